@@ -1,0 +1,19 @@
+//! crawltrace turns scanned skip-stroke line drawings and raw 2D point sets into clean vector
+//! curves, with the Crawl through Neighbors reconstruction (Parakkat & Muthuganapathy, 2016) at its
+//! heart. The pipeline and its conventions are described in `../shared/DESIGN.md`.
+//!
+//! Point sets: [`reconstruct::reconstruct`] takes points and returns curves as chains of input
+//! indices, each open or closed, plus the outliers.
+#![forbid(unsafe_code)]
+#![warn(missing_docs)]
+
+pub mod bitmap;
+pub mod pointfile;
+pub mod pointset;
+pub mod reconstruct;
+pub mod render;
+pub mod svg;
+
+pub use kurbo::Point;
+pub use reconstruct::{reconstruct, Curve, Reconstruction};
+pub use svg::{CurvePath, Drawing};

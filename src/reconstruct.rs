@@ -1,0 +1,811 @@
+//! Curve reconstruction by Crawl through Neighbors (Parakkat & Muthuganapathy, Computer Graphics
+//! Forum 35(5), 2016, Algorithm 1) on spade's Delaunay triangulation.
+//!
+//! The crawl follows the paper's *text* (see `../shared/DESIGN.md`, "The crawl"):
+//!
+//! 1. **Seed**: the shortest graph edge whose two endpoints are unvisited and are each other's
+//!    nearest neighbour.
+//! 2. **Crawl**: of all edges from either extremity of the chain to an unvisited vertex, the shortest
+//!    is the candidate (length `d`).
+//! 3. **Terminate** when there is no candidate, or the chain has more than two edges and `d` is
+//!    greater than the distance `d1` between its extremities (tested *before* the candidate is added).
+//! 4. **Close** if the chain is closable (more than two edges and one extremity is the other's
+//!    nearest or second-nearest Delaunay neighbour).
+//! 5. Repeat; vertices that never join a chain are outliers.
+//!
+//! Decisions the paper leaves open are made at the spot they matter and marked `DECISION:`.
+//! The crawl itself ([`crawl`]) runs on any [`NeighbourGraph`], so the raster pipeline can run it on
+//! a graph that knows which samples belong to the same pen stroke.
+
+use std::cmp::Ordering;
+use std::collections::VecDeque;
+
+use kurbo::Point;
+use spade::{DelaunayTriangulation, HasPosition, Point2, Triangulation};
+
+/// One reconstructed curve: a chain of input point indices.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Curve {
+    /// Indices into the input point list, in order along the curve. A closed curve does not
+    /// repeat its first index at the end.
+    pub indices: Vec<usize>,
+    /// Whether the last point connects back to the first.
+    pub closed: bool,
+}
+
+/// A point that was dropped because another input point has exactly the same coordinates.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct MergedDuplicate {
+    /// The dropped point's input index.
+    pub dropped: usize,
+    /// The input index of the point it was merged into (the first one with those coordinates).
+    pub kept: usize,
+}
+
+/// The result of reconstructing curves from a point set.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Reconstruction {
+    /// The reconstructed curves, in the order the crawl found them, each in a canonical
+    /// orientation (see [`reconstruct`]).
+    pub curves: Vec<Curve>,
+    /// Input indices of the points that belong to no curve, ascending.
+    pub outliers: Vec<usize>,
+    /// Exact duplicates that were merged before triangulating, in input order.
+    pub merged_duplicates: Vec<MergedDuplicate>,
+}
+
+/// Why a point set could not be reconstructed.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum ReconstructError {
+    /// A coordinate is NaN or infinite.
+    #[error("point {index} has a coordinate that is not a finite number")]
+    NotFinite {
+        /// Input index of the offending point.
+        index: usize,
+    },
+    /// spade refused a coordinate (too large, or too close to zero without being zero).
+    #[error("point {index} has a coordinate the triangulation cannot represent ({value:e}); the magnitude must lie between 1e-42 and 1e60, or be 0")]
+    OutOfRange {
+        /// Input index of the offending point.
+        index: usize,
+        /// The offending coordinate.
+        value: f64,
+    },
+}
+
+/// Reconstructs curves from a planar point set with no parameter.
+///
+/// Exact duplicate points are merged into the first occurrence (reported in
+/// [`Reconstruction::merged_duplicates`]). The result does not depend on the order of the input
+/// points: ties between equal distances are broken by the points' coordinates, never by their
+/// position in the input. Open curves start at their lexicographically smaller end (by x, then y);
+/// closed curves start at their lexicographically smallest point and continue towards its smaller
+/// neighbour.
+pub fn reconstruct(points: &[Point]) -> Result<Reconstruction, ReconstructError> {
+    let canonical = CanonicalPoints::new(points)?;
+    let graph = NeighbourGraph::delaunay(&canonical.positions)?;
+    let chains = crawl(&canonical.positions, &graph, |chain| {
+        paper_closable(&canonical.positions, &graph, chain)
+    });
+    Ok(canonical.into_reconstruction(chains))
+}
+
+/// The paper's closing rule: more than two edges, and one extremity is the other's nearest or
+/// second-nearest neighbour.
+///
+/// DECISION: "second-nearest neighbour" means among *all* points, as the paper's text says, not
+/// among Delaunay neighbours only (as DESIGN.md words it). With Delaunay neighbours only, any open
+/// arc whose two ends are neighbours on the convex hull (a parabola, a "C") closes, because the
+/// hull edge makes the far end the second Delaunay neighbour of an end vertex of degree two.
+/// The closing edge must still be a Delaunay edge, so every output edge is one.
+///
+/// DECISION: ties count generously: the other extremity qualifies if it is no farther than the
+/// second-nearest neighbour. On evenly spaced samples the chain neighbour and the other extremity
+/// are often exactly equally far; breaking that tie by coordinates would leave perfectly sampled
+/// circles open. A *nearest* extremity qualifies too.
+pub(crate) fn paper_closable(
+    positions: &[Point],
+    graph: &NeighbourGraph,
+    chain: &ChainEnds,
+) -> bool {
+    if chain.edge_count <= 2 || !graph.has_edge(chain.front, chain.back) {
+        return false;
+    }
+    let gap = squared_distance(
+        positions[chain.front as usize],
+        positions[chain.back as usize],
+    );
+    [chain.front, chain.back].into_iter().any(|v| {
+        graph
+            .second_nearest_squared_distance(positions, v)
+            .is_none_or(|d| gap <= d)
+    })
+}
+
+/// The distinct input points in lexicographic order, with the way back to input indices.
+///
+/// Working in this order makes every tie-break (by vertex id) a tie-break by coordinates, so the
+/// result is independent of input order, translation and scaling by powers of two.
+struct CanonicalPoints {
+    positions: Vec<Point>,
+    /// For each canonical vertex, the smallest input index with its coordinates.
+    input_index: Vec<usize>,
+    merged_duplicates: Vec<MergedDuplicate>,
+}
+
+impl CanonicalPoints {
+    fn new(points: &[Point]) -> Result<Self, ReconstructError> {
+        for (index, p) in points.iter().enumerate() {
+            if !(p.x.is_finite() && p.y.is_finite()) {
+                return Err(ReconstructError::NotFinite { index });
+            }
+            for value in [p.x, p.y] {
+                let magnitude = value.abs();
+                if value != 0.0 && !(spade::MIN_ALLOWED_VALUE..=1e60).contains(&magnitude) {
+                    return Err(ReconstructError::OutOfRange { index, value });
+                }
+            }
+        }
+        let mut order: Vec<usize> = (0..points.len()).collect();
+        // Sorting by (x, y, input index) puts duplicates side by side with the first one leading.
+        // -0.0 and 0.0 compare equal here, as they are the same position.
+        order.sort_unstable_by(|&a, &b| lexicographic(points[a], points[b]).then(a.cmp(&b)));
+        let mut positions = Vec::with_capacity(points.len());
+        let mut input_index = Vec::with_capacity(points.len());
+        let mut merged_duplicates = Vec::new();
+        for &i in &order {
+            let p = points[i];
+            match positions.last() {
+                Some(&last) if lexicographic(last, p) == Ordering::Equal => {
+                    merged_duplicates.push(MergedDuplicate {
+                        dropped: i,
+                        kept: *input_index
+                            .last()
+                            .expect("positions and input_index grow together"),
+                    });
+                }
+                _ => {
+                    // Normalise -0.0 so that equal positions are bit-identical downstream.
+                    positions.push(Point::new(p.x + 0.0, p.y + 0.0));
+                    input_index.push(i);
+                }
+            }
+        }
+        merged_duplicates.sort_unstable_by_key(|d| d.dropped);
+        Ok(Self {
+            positions,
+            input_index,
+            merged_duplicates,
+        })
+    }
+
+    fn into_reconstruction(self, chains: Vec<Chain>) -> Reconstruction {
+        let mut in_curve = vec![false; self.positions.len()];
+        let mut curves = Vec::new();
+        for chain in chains {
+            // DECISION: a chain of two points (one edge) is not a curve. It is what a pair of
+            // stray points that are each other's nearest neighbours produces, and a single edge
+            // carries no evidence of a curve; its points are reported as outliers. Chains of three
+            // points (two edges) are kept as open curves: the paper never closes them.
+            if chain.vertices.len() < 3 {
+                continue;
+            }
+            for &v in &chain.vertices {
+                in_curve[v as usize] = true;
+            }
+            let vertices = canonical_orientation(chain.vertices, chain.closed);
+            curves.push(Curve {
+                indices: vertices
+                    .iter()
+                    .map(|&v| self.input_index[v as usize])
+                    .collect(),
+                closed: chain.closed,
+            });
+        }
+        let mut outliers: Vec<usize> = in_curve
+            .iter()
+            .enumerate()
+            .filter(|(_, &used)| !used)
+            .map(|(v, _)| self.input_index[v])
+            .collect();
+        outliers.sort_unstable();
+        Reconstruction {
+            curves,
+            outliers,
+            merged_duplicates: self.merged_duplicates,
+        }
+    }
+}
+
+fn lexicographic(a: Point, b: Point) -> Ordering {
+    a.x.partial_cmp(&b.x)
+        .unwrap_or(Ordering::Equal)
+        .then(a.y.partial_cmp(&b.y).unwrap_or(Ordering::Equal))
+}
+
+/// Open chains start at the end with the smaller vertex id; closed chains start at their smallest
+/// id and go towards the smaller of its two neighbours. Vertex ids are canonical, so this
+/// orientation is a property of the geometry alone.
+pub(crate) fn canonical_orientation(vertices: VecDeque<u32>, closed: bool) -> Vec<u32> {
+    let mut vertices: Vec<u32> = vertices.into();
+    if vertices.len() < 2 {
+        return vertices;
+    }
+    if closed {
+        let start = (0..vertices.len())
+            .min_by_key(|&i| vertices[i])
+            .expect("non-empty");
+        vertices.rotate_left(start);
+        if vertices[vertices.len() - 1] < vertices[1] {
+            vertices[1..].reverse();
+        }
+    } else if vertices[vertices.len() - 1] < vertices[0] {
+        vertices.reverse();
+    }
+    vertices
+}
+
+/// An undirected graph on points whose adjacency lists are sorted by edge length (ties by
+/// neighbour id), stored compactly (compressed sparse rows).
+#[derive(Clone, Debug, Default)]
+pub struct NeighbourGraph {
+    offsets: Vec<usize>,
+    neighbours: Vec<u32>,
+    squared_lengths: Vec<f64>,
+}
+
+/// A vertex handed to spade: its position and our id for it.
+#[derive(Clone, Copy, Debug)]
+struct IdentifiedVertex {
+    position: Point2<f64>,
+    id: u32,
+}
+
+impl HasPosition for IdentifiedVertex {
+    type Scalar = f64;
+    fn position(&self) -> Point2<f64> {
+        self.position
+    }
+}
+
+impl NeighbourGraph {
+    /// The Delaunay triangulation of `positions`, which must be distinct and finite.
+    pub fn delaunay(positions: &[Point]) -> Result<Self, ReconstructError> {
+        let vertices: Vec<IdentifiedVertex> = positions
+            .iter()
+            .enumerate()
+            .map(|(i, p)| IdentifiedVertex {
+                position: Point2::new(p.x, p.y),
+                id: u32::try_from(i).expect("more than 4 billion points"),
+            })
+            .collect();
+        let triangulation: DelaunayTriangulation<IdentifiedVertex> =
+            DelaunayTriangulation::bulk_load(vertices).map_err(|_| {
+                // Inputs are validated beforehand; this is only reachable if spade's limits change.
+                ReconstructError::OutOfRange {
+                    index: 0,
+                    value: f64::NAN,
+                }
+            })?;
+        debug_assert_eq!(triangulation.num_vertices(), positions.len());
+        let edges = triangulation.undirected_edges().map(|edge| {
+            let [a, b] = edge.vertices();
+            (a.data().id, b.data().id)
+        });
+        Ok(Self::from_edges(positions, edges))
+    }
+
+    /// A graph with the given undirected edges; duplicate edges and self-loops are ignored.
+    pub fn from_edges(positions: &[Point], edges: impl IntoIterator<Item = (u32, u32)>) -> Self {
+        let n = positions.len();
+        let mut pairs: Vec<(u32, u32)> = edges
+            .into_iter()
+            .filter(|(a, b)| a != b)
+            .flat_map(|(a, b)| [(a, b), (b, a)])
+            .collect();
+        pairs.sort_unstable();
+        pairs.dedup();
+        let mut offsets = vec![0usize; n + 1];
+        for &(a, _) in &pairs {
+            offsets[a as usize + 1] += 1;
+        }
+        for i in 0..n {
+            offsets[i + 1] += offsets[i];
+        }
+        let mut neighbours: Vec<u32> = pairs.iter().map(|&(_, b)| b).collect();
+        let mut squared_lengths: Vec<f64> = pairs
+            .iter()
+            .map(|&(a, b)| squared_distance(positions[a as usize], positions[b as usize]))
+            .collect();
+        // Sort each adjacency list by (length, id).
+        let mut scratch: Vec<(f64, u32)> = Vec::new();
+        for v in 0..n {
+            let range = offsets[v]..offsets[v + 1];
+            scratch.clear();
+            scratch.extend(
+                squared_lengths[range.clone()]
+                    .iter()
+                    .copied()
+                    .zip(neighbours[range.clone()].iter().copied()),
+            );
+            scratch.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+            for (k, &(length, w)) in scratch.iter().enumerate() {
+                squared_lengths[range.start + k] = length;
+                neighbours[range.start + k] = w;
+            }
+        }
+        Self {
+            offsets,
+            neighbours,
+            squared_lengths,
+        }
+    }
+
+    /// Number of vertices.
+    pub fn vertex_count(&self) -> usize {
+        self.offsets.len().saturating_sub(1)
+    }
+
+    /// Number of undirected edges.
+    pub fn edge_count(&self) -> usize {
+        self.neighbours.len() / 2
+    }
+
+    /// The neighbours of `v`, nearest first.
+    pub fn neighbours(&self, v: u32) -> &[u32] {
+        &self.neighbours[self.offsets[v as usize]..self.offsets[v as usize + 1]]
+    }
+
+    /// The squared lengths of the edges to [`Self::neighbours`]`(v)`, in the same order.
+    pub fn squared_lengths(&self, v: u32) -> &[f64] {
+        &self.squared_lengths[self.offsets[v as usize]..self.offsets[v as usize + 1]]
+    }
+
+    /// Whether `v` and `w` are joined by an edge.
+    pub fn has_edge(&self, v: u32, w: u32) -> bool {
+        self.neighbours(v).contains(&w)
+    }
+
+    /// The squared distance from `v` to its second-nearest point among all vertices, if it has
+    /// two neighbours at all.
+    ///
+    /// On a Delaunay triangulation the k-th nearest neighbour of a vertex is adjacent to the vertex
+    /// or to one of its k-1 nearest neighbours (Dickerson, Drysdale & Sack, 1992), so for k = 2 it
+    /// is the nearer of `v`'s second neighbour and the neighbours of `v`'s nearest one.
+    pub fn second_nearest_squared_distance(&self, positions: &[Point], v: u32) -> Option<f64> {
+        let nearest = *self.neighbours(v).first()?;
+        let beside_v = self.squared_lengths(v).get(1).copied();
+        let beside_nearest = self
+            .neighbours(nearest)
+            .iter()
+            .filter(|&&w| w != v)
+            .map(|&w| squared_distance(positions[v as usize], positions[w as usize]))
+            .min_by(f64::total_cmp);
+        match (beside_v, beside_nearest) {
+            (Some(a), Some(b)) => Some(a.min(b)),
+            (a, b) => a.or(b),
+        }
+    }
+}
+
+pub(crate) fn squared_distance(a: Point, b: Point) -> f64 {
+    let (dx, dy) = (a.x - b.x, a.y - b.y);
+    dx * dx + dy * dy
+}
+
+/// A chain the crawl built: vertex ids in order, and whether it was closed.
+#[derive(Clone, Debug)]
+pub(crate) struct Chain {
+    pub vertices: VecDeque<u32>,
+    pub closed: bool,
+}
+
+/// What a closing rule sees of a terminated chain.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct ChainEnds {
+    pub front: u32,
+    pub back: u32,
+    pub edge_count: usize,
+}
+
+/// Runs the crawl on `graph` (whose vertices are `positions`) and returns every chain it built,
+/// in the order of their seeds, including chains of two vertices.
+///
+/// `closable` decides, for a terminated chain, whether to add the edge between its extremities.
+pub(crate) fn crawl(
+    positions: &[Point],
+    graph: &NeighbourGraph,
+    mut closable: impl FnMut(&ChainEnds) -> bool,
+) -> Vec<Chain> {
+    let n = graph.vertex_count();
+    let mut visited = vec![false; n];
+    // The next not-yet-visited entry of each adjacency list. Vertices only ever become visited, so
+    // these only move forward: finding candidates costs O(total degree) over the whole crawl.
+    let mut cursor: Vec<usize> = graph.offsets[..n].to_vec();
+    let mut chains = Vec::new();
+
+    for (a, b) in seed_edges(graph) {
+        if visited[a as usize] || visited[b as usize] {
+            continue;
+        }
+        visited[a as usize] = true;
+        visited[b as usize] = true;
+        let mut vertices = VecDeque::from([a, b]);
+        let mut edge_count = 1usize;
+        loop {
+            let front = *vertices.front().expect("chain has two ends");
+            let back = *vertices.back().expect("chain has two ends");
+            let at_front = nearest_unvisited(graph, &visited, &mut cursor, front);
+            let at_back = nearest_unvisited(graph, &visited, &mut cursor, back);
+            // DECISION: when both extremities offer candidates of exactly equal length, the one
+            // with the smaller vertex id (lexicographically smaller point) wins; then the front.
+            let candidate = match (at_front, at_back) {
+                (None, None) => break,
+                (Some(f), None) => (true, f),
+                (None, Some(b)) => (false, b),
+                (Some(f), Some(b)) => {
+                    let back_is_better = b.1.total_cmp(&f.1).then(b.0.cmp(&f.0)) == Ordering::Less;
+                    if back_is_better {
+                        (false, b)
+                    } else {
+                        (true, f)
+                    }
+                }
+            };
+            let (at_front_end, (vertex, squared_length)) = candidate;
+            if edge_count > 2 {
+                // DECISION: "d > d1" is strict; a candidate exactly as long as the gap between
+                // the extremities is still added.
+                let squared_gap =
+                    squared_distance(positions[front as usize], positions[back as usize]);
+                if squared_length > squared_gap {
+                    break;
+                }
+            }
+            visited[vertex as usize] = true;
+            if at_front_end {
+                vertices.push_front(vertex);
+            } else {
+                vertices.push_back(vertex);
+            }
+            edge_count += 1;
+        }
+        let ends = ChainEnds {
+            front: *vertices.front().expect("chain has two ends"),
+            back: *vertices.back().expect("chain has two ends"),
+            edge_count,
+        };
+        let closed = closable(&ends);
+        chains.push(Chain { vertices, closed });
+    }
+    chains
+}
+
+/// The nearest unvisited neighbour of `v` and its squared distance.
+fn nearest_unvisited(
+    graph: &NeighbourGraph,
+    visited: &[bool],
+    cursor: &mut [usize],
+    v: u32,
+) -> Option<(u32, f64)> {
+    let end = graph.offsets[v as usize + 1];
+    let at = &mut cursor[v as usize];
+    while *at < end && visited[graph.neighbours[*at] as usize] {
+        *at += 1;
+    }
+    (*at < end).then(|| (graph.neighbours[*at], graph.squared_lengths[*at]))
+}
+
+/// Every edge whose endpoints are each other's nearest neighbour, shortest first.
+///
+/// DECISION: "nearest neighbour" is taken over all neighbours (visited or not) and counts ties: an
+/// edge qualifies when no neighbour of either endpoint is strictly closer. The set is therefore
+/// fixed before the crawl, and a stray point, whose nearest neighbour lies on a curve that is
+/// nearer to something else, never seeds a chain. Equal seeds are ordered by their vertex ids.
+fn seed_edges(graph: &NeighbourGraph) -> Vec<(u32, u32)> {
+    let n = graph.vertex_count() as u32;
+    let nearest = |v: u32| graph.squared_lengths(v).first().copied();
+    let mut seeds: Vec<(f64, u32, u32)> = Vec::new();
+    for v in 0..n {
+        let Some(nearest_v) = nearest(v) else {
+            continue;
+        };
+        for (&w, &length) in graph.neighbours(v).iter().zip(graph.squared_lengths(v)) {
+            if length > nearest_v {
+                break;
+            }
+            if w > v && nearest(w) == Some(length) {
+                seeds.push((length, v, w));
+            }
+        }
+    }
+    seeds.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then((a.1, a.2).cmp(&(b.1, b.2))));
+    seeds.into_iter().map(|(_, v, w)| (v, w)).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use std::collections::BTreeSet;
+    use std::f64::consts::TAU;
+
+    use super::*;
+
+    /// `count` points on an ellipse, evenly spaced in angle, starting at `phase`.
+    fn ellipse(center: (f64, f64), radii: (f64, f64), count: usize, phase: f64) -> Vec<Point> {
+        (0..count)
+            .map(|i| {
+                let angle = phase + TAU * i as f64 / count as f64;
+                Point::new(
+                    center.0 + radii.0 * angle.cos(),
+                    center.1 + radii.1 * angle.sin(),
+                )
+            })
+            .collect()
+    }
+
+    /// The undirected edges of consecutive indices in `range`, closed or not.
+    fn chain_edges(range: std::ops::Range<usize>, closed: bool) -> BTreeSet<(usize, usize)> {
+        let v: Vec<usize> = range.collect();
+        let mut edges: BTreeSet<(usize, usize)> = v
+            .windows(2)
+            .map(|w| (w[0].min(w[1]), w[0].max(w[1])))
+            .collect();
+        if closed {
+            edges.insert((v[0].min(v[v.len() - 1]), v[0].max(v[v.len() - 1])));
+        }
+        edges
+    }
+
+    fn edges_of(result: &Reconstruction) -> BTreeSet<(usize, usize)> {
+        let mut edges = BTreeSet::new();
+        for curve in &result.curves {
+            let i = &curve.indices;
+            for w in i.windows(2) {
+                edges.insert((w[0].min(w[1]), w[0].max(w[1])));
+            }
+            if curve.closed {
+                edges.insert((i[0].min(i[i.len() - 1]), i[0].max(i[i.len() - 1])));
+            }
+        }
+        edges
+    }
+
+    fn closed_flags(result: &Reconstruction) -> Vec<bool> {
+        let mut flags: Vec<bool> = result.curves.iter().map(|c| c.closed).collect();
+        flags.sort();
+        flags
+    }
+
+    #[test]
+    fn circle_is_one_closed_curve() {
+        let points = ellipse((0.0, 0.0), (10.0, 10.0), 24, 0.1);
+        let result = reconstruct(&points).unwrap();
+        assert_eq!(closed_flags(&result), vec![true]);
+        assert_eq!(edges_of(&result), chain_edges(0..24, true));
+        assert!(result.outliers.is_empty());
+    }
+
+    #[test]
+    fn perfectly_even_circle_closes_despite_equal_distances() {
+        // Every edge has the same length up to rounding: the tie rules must still close it.
+        let points = ellipse((0.0, 0.0), (1.0, 1.0), 12, 0.0);
+        let result = reconstruct(&points).unwrap();
+        assert_eq!(closed_flags(&result), vec![true]);
+        assert_eq!(edges_of(&result), chain_edges(0..12, true));
+    }
+
+    #[test]
+    fn ellipse_is_one_closed_curve() {
+        let points = ellipse((5.0, -3.0), (30.0, 10.0), 60, 0.05);
+        let result = reconstruct(&points).unwrap();
+        assert_eq!(closed_flags(&result), vec![true]);
+        assert_eq!(edges_of(&result), chain_edges(0..60, true));
+    }
+
+    #[test]
+    fn nested_curves_stay_apart() {
+        let mut points = ellipse((0.0, 0.0), (10.0, 10.0), 48, 0.0);
+        points.extend(ellipse((0.5, 0.0), (5.0, 4.0), 30, 0.2));
+        let result = reconstruct(&points).unwrap();
+        assert_eq!(closed_flags(&result), vec![true, true]);
+        let mut expected = chain_edges(0..48, true);
+        expected.extend(chain_edges(48..78, true));
+        assert_eq!(edges_of(&result), expected);
+    }
+
+    #[test]
+    fn separate_objects_are_separate_curves() {
+        let mut points = ellipse((0.0, 0.0), (5.0, 5.0), 20, 0.0);
+        points.extend(ellipse((20.0, 0.0), (6.0, 3.0), 24, 0.3));
+        points.extend(ellipse((0.0, 20.0), (4.0, 7.0), 26, 0.7));
+        let result = reconstruct(&points).unwrap();
+        assert_eq!(closed_flags(&result), vec![true, true, true]);
+        let mut expected = chain_edges(0..20, true);
+        expected.extend(chain_edges(20..44, true));
+        expected.extend(chain_edges(44..70, true));
+        assert_eq!(edges_of(&result), expected);
+    }
+
+    #[test]
+    fn open_arc_stays_open_and_ordered() {
+        // A parabola: its two ends are neighbours on the convex hull, the case a Delaunay-only
+        // reading of "second-nearest neighbour" gets wrong.
+        let points: Vec<Point> = (0..20)
+            .map(|i| {
+                let x = 10.0 - 20.0 * i as f64 / 19.0;
+                Point::new(x, x * x / 10.0)
+            })
+            .collect();
+        let result = reconstruct(&points).unwrap();
+        assert_eq!(result.curves.len(), 1);
+        let curve = &result.curves[0];
+        assert!(!curve.closed);
+        // Starts at the lexicographically smaller end (-10, 10), i.e. index 19.
+        assert_eq!(curve.indices, (0..20).rev().collect::<Vec<_>>());
+    }
+
+    #[test]
+    fn sharp_corners_are_kept() {
+        // A square and an L sampled along their sides: corners are sample points.
+        let mut points = Vec::new();
+        let square = [(0.0, 0.0), (10.0, 0.0), (10.0, 10.0), (0.0, 10.0)];
+        for k in 0..4 {
+            let (a, b) = (square[k], square[(k + 1) % 4]);
+            for i in 0..10 {
+                let t = i as f64 / 10.0;
+                points.push(Point::new(a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1)));
+            }
+        }
+        // An L with a reflex corner, sampled every 1 along its sides.
+        let l_shape = [
+            (20.0, 0.0),
+            (30.0, 0.0),
+            (30.0, 4.0),
+            (24.0, 4.0),
+            (24.0, 10.0),
+            (20.0, 10.0),
+        ];
+        for k in 0..l_shape.len() {
+            let (a, b): ((f64, f64), (f64, f64)) = (l_shape[k], l_shape[(k + 1) % l_shape.len()]);
+            let steps = ((b.0 - a.0).abs() + (b.1 - a.1).abs()) as usize;
+            for i in 0..steps {
+                let t = i as f64 / steps as f64;
+                points.push(Point::new(a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1)));
+            }
+        }
+        let result = reconstruct(&points).unwrap();
+        assert_eq!(closed_flags(&result), vec![true, true]);
+        let mut expected = chain_edges(0..40, true);
+        expected.extend(chain_edges(40..points.len(), true));
+        assert_eq!(edges_of(&result), expected);
+    }
+
+    #[test]
+    fn stray_points_stay_outliers_and_do_not_bend_the_curve() {
+        let mut points = ellipse((0.0, 0.0), (10.0, 10.0), 40, 0.0);
+        // Spacing on the circle is about 1.57; these are 3 to 6 away from it and from each other.
+        points.push(Point::new(0.0, 0.0));
+        points.push(Point::new(14.0, 0.5));
+        points.push(Point::new(-4.0, 16.0));
+        points.push(Point::new(5.0, -15.0));
+        let result = reconstruct(&points).unwrap();
+        assert_eq!(closed_flags(&result), vec![true]);
+        assert_eq!(edges_of(&result), chain_edges(0..40, true));
+        assert_eq!(result.outliers, vec![40, 41, 42, 43]);
+    }
+
+    #[test]
+    fn sparse_samples_of_a_smooth_curve() {
+        // Eight points on a circle: sparse, yet every point's nearest neighbours are its curve
+        // neighbours.
+        let points = ellipse((3.0, 4.0), (2.0, 2.0), 8, 0.4);
+        let result = reconstruct(&points).unwrap();
+        assert_eq!(edges_of(&result), chain_edges(0..8, true));
+    }
+
+    #[test]
+    fn tiny_inputs_do_not_panic() {
+        assert_eq!(reconstruct(&[]).unwrap(), Reconstruction::default());
+        let one = reconstruct(&[Point::new(1.0, 2.0)]).unwrap();
+        assert_eq!(one.outliers, vec![0]);
+        assert!(one.curves.is_empty());
+        let two = reconstruct(&[Point::new(1.0, 2.0), Point::new(3.0, 2.0)]).unwrap();
+        assert_eq!(two.outliers, vec![0, 1], "a single edge is not a curve");
+        let three = reconstruct(&[
+            Point::new(0.0, 0.0),
+            Point::new(1.0, 0.0),
+            Point::new(0.0, 1.0),
+        ])
+        .unwrap();
+        assert_eq!(three.curves.len(), 1);
+        assert!(
+            !three.curves[0].closed,
+            "a triangle has only two edges before closing"
+        );
+    }
+
+    #[test]
+    fn collinear_points_make_one_open_polyline() {
+        // Shuffled input order; x positions 0..30 with uneven gaps.
+        let xs = [7.0, 0.0, 29.0, 3.0, 12.0, 1.0, 20.0, 5.0, 16.0, 9.0];
+        let points: Vec<Point> = xs.iter().map(|&x| Point::new(x, 2.0 * x)).collect();
+        let result = reconstruct(&points).unwrap();
+        let mut sorted: Vec<usize> = (0..xs.len()).collect();
+        sorted.sort_by(|&a, &b| xs[a].total_cmp(&xs[b]));
+        // The long last gap (20 → 29) may end the chain early; all else must be one path.
+        let covered: usize = result.curves.iter().map(|c| c.indices.len()).sum();
+        assert_eq!(covered + result.outliers.len(), xs.len());
+        assert!(result.curves.iter().all(|c| !c.closed));
+        let first = &result.curves[0].indices;
+        assert!(
+            sorted.windows(first.len()).any(|w| w == first.as_slice()),
+            "{first:?}"
+        );
+    }
+
+    #[test]
+    fn duplicates_are_merged_and_reported() {
+        let mut points = ellipse((0.0, 0.0), (10.0, 10.0), 20, 0.0);
+        points.push(points[3]);
+        points.push(points[7]);
+        points.push(points[3]);
+        let result = reconstruct(&points).unwrap();
+        assert_eq!(
+            result.merged_duplicates,
+            vec![
+                MergedDuplicate {
+                    dropped: 20,
+                    kept: 3
+                },
+                MergedDuplicate {
+                    dropped: 21,
+                    kept: 7
+                },
+                MergedDuplicate {
+                    dropped: 22,
+                    kept: 3
+                },
+            ]
+        );
+        assert_eq!(edges_of(&result), chain_edges(0..20, true));
+        assert!(result.outliers.is_empty());
+    }
+
+    #[test]
+    fn non_finite_and_unrepresentable_coordinates_are_errors() {
+        let points = [Point::new(0.0, 0.0), Point::new(f64::NAN, 1.0)];
+        assert_eq!(
+            reconstruct(&points),
+            Err(ReconstructError::NotFinite { index: 1 })
+        );
+        let points = [Point::new(0.0, 0.0), Point::new(1.0, f64::INFINITY)];
+        assert_eq!(
+            reconstruct(&points),
+            Err(ReconstructError::NotFinite { index: 1 })
+        );
+        let points = [Point::new(1e300, 0.0)];
+        assert!(matches!(
+            reconstruct(&points),
+            Err(ReconstructError::OutOfRange { index: 0, .. })
+        ));
+    }
+
+    #[test]
+    fn closing_rule_counts_ties_and_needs_more_than_two_edges() {
+        // A square with one point per corner plus midpoints: every edge is 1 long.
+        let points = [
+            (0, 0),
+            (1, 0),
+            (2, 0),
+            (2, 1),
+            (2, 2),
+            (1, 2),
+            (0, 2),
+            (0, 1),
+        ]
+        .map(|(x, y)| Point::new(x as f64, y as f64));
+        let result = reconstruct(&points).unwrap();
+        assert_eq!(closed_flags(&result), vec![true]);
+        assert_eq!(edges_of(&result), chain_edges(0..8, true));
+    }
+}

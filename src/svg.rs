@@ -1,0 +1,208 @@
+//! Writes a [`Drawing`] as SVG text, following the conventions of `../shared/DESIGN.md` ("SVG
+//! conventions"): viewBox in pixels, one `<path>` per curve, `Z` on closed curves, at most two
+//! decimals, byte-identical output for identical input.
+
+use std::fmt::Write as _;
+
+use kurbo::{BezPath, PathEl, Point};
+
+/// Vector curves on a canvas, ready to be written as SVG.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Drawing {
+    /// Canvas width in pixels.
+    pub width: f64,
+    /// Canvas height in pixels.
+    pub height: f64,
+    /// One entry per curve, in a stable order.
+    pub paths: Vec<CurvePath>,
+    /// Stroke width in pixels.
+    pub stroke_width: f64,
+    /// Stroke colour, any SVG colour (`#000000`, `black`, …).
+    pub color: String,
+    /// Points drawn as small dots (outliers of a point set); empty for traced images.
+    pub dots: Vec<Point>,
+}
+
+/// One curve of a [`Drawing`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct CurvePath {
+    /// The geometry: lines and cubic Béziers, ending in `ClosePath` when closed.
+    pub path: BezPath,
+    /// Whether the curve is closed.
+    pub closed: bool,
+}
+
+impl CurvePath {
+    /// A straight-segment path through `points`, closed back to the first one if `closed`.
+    pub fn polyline(points: &[Point], closed: bool) -> Self {
+        let mut path = BezPath::new();
+        for (i, &p) in points.iter().enumerate() {
+            if i == 0 {
+                path.move_to(p);
+            } else {
+                path.line_to(p);
+            }
+        }
+        if closed && points.len() > 2 {
+            path.close_path();
+        }
+        Self {
+            path,
+            closed: closed && points.len() > 2,
+        }
+    }
+}
+
+/// Formats a number with at most two decimals, no trailing zeros and no `-0`.
+pub fn format_number(value: f64) -> String {
+    let mut text = format!("{:.2}", value);
+    if text.contains('.') {
+        let trimmed = text.trim_end_matches('0').trim_end_matches('.').len();
+        text.truncate(trimmed);
+    }
+    if text == "-0" {
+        text = "0".to_string();
+    }
+    text
+}
+
+/// The `d` attribute of a path.
+pub fn path_data(path: &BezPath) -> String {
+    let mut d = String::new();
+    let point = |d: &mut String, p: Point| {
+        let _ = write!(d, "{} {}", format_number(p.x), format_number(p.y));
+    };
+    for element in path.elements() {
+        if !d.is_empty() {
+            d.push(' ');
+        }
+        match *element {
+            PathEl::MoveTo(p) => {
+                d.push('M');
+                point(&mut d, p);
+            }
+            PathEl::LineTo(p) => {
+                d.push('L');
+                point(&mut d, p);
+            }
+            PathEl::QuadTo(a, p) => {
+                d.push('Q');
+                point(&mut d, a);
+                d.push(' ');
+                point(&mut d, p);
+            }
+            PathEl::CurveTo(a, b, p) => {
+                d.push('C');
+                point(&mut d, a);
+                d.push(' ');
+                point(&mut d, b);
+                d.push(' ');
+                point(&mut d, p);
+            }
+            PathEl::ClosePath => d.push('Z'),
+        }
+    }
+    d
+}
+
+/// Writes `drawing` as a standalone SVG document.
+pub fn to_svg(drawing: &Drawing) -> String {
+    let width = format_number(drawing.width);
+    let height = format_number(drawing.height);
+    let mut svg = String::new();
+    let _ = writeln!(
+        svg,
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" viewBox="0 0 {width} {height}">"#
+    );
+    let _ = writeln!(
+        svg,
+        r#"<g fill="none" stroke="{}" stroke-width="{}" stroke-linecap="round" stroke-linejoin="round">"#,
+        escape_attribute(&drawing.color),
+        format_number(drawing.stroke_width.max(0.01)),
+    );
+    for curve in &drawing.paths {
+        let _ = writeln!(svg, r#"<path d="{}"/>"#, path_data(&curve.path));
+    }
+    svg.push_str("</g>\n");
+    if !drawing.dots.is_empty() {
+        let radius = format_number((drawing.stroke_width * 0.75).max(0.01));
+        svg.push_str("<g fill=\"#d33\">\n");
+        for dot in &drawing.dots {
+            let _ = writeln!(
+                svg,
+                r#"<circle cx="{}" cy="{}" r="{radius}"/>"#,
+                format_number(dot.x),
+                format_number(dot.y)
+            );
+        }
+        svg.push_str("</g>\n");
+    }
+    svg.push_str("</svg>\n");
+    svg
+}
+
+fn escape_attribute(value: &str) -> String {
+    value
+        .replace('&', "&amp;")
+        .replace('"', "&quot;")
+        .replace('<', "&lt;")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_have_at_most_two_decimals_and_no_negative_zero() {
+        assert_eq!(format_number(1.0), "1");
+        assert_eq!(format_number(1.5), "1.5");
+        assert_eq!(format_number(1.239), "1.24");
+        assert_eq!(format_number(-0.001), "0");
+        assert_eq!(format_number(-2.10), "-2.1");
+        assert_eq!(format_number(100.0), "100");
+    }
+
+    #[test]
+    fn closed_polylines_end_with_z_and_open_ones_do_not() {
+        let square = [
+            Point::new(0.5, 0.5),
+            Point::new(10.5, 0.5),
+            Point::new(10.5, 10.5),
+        ];
+        let closed = CurvePath::polyline(&square, true);
+        assert_eq!(path_data(&closed.path), "M0.5 0.5 L10.5 0.5 L10.5 10.5 Z");
+        let open = CurvePath::polyline(&square, false);
+        assert_eq!(path_data(&open.path), "M0.5 0.5 L10.5 0.5 L10.5 10.5");
+    }
+
+    #[test]
+    fn document_has_the_canvas_as_view_box_and_one_path_per_curve() {
+        let drawing = Drawing {
+            width: 40.0,
+            height: 30.0,
+            paths: vec![
+                CurvePath::polyline(&[Point::new(1.0, 1.0), Point::new(5.0, 5.0)], false),
+                CurvePath::polyline(
+                    &[
+                        Point::new(1.0, 1.0),
+                        Point::new(5.0, 1.0),
+                        Point::new(5.0, 5.0),
+                    ],
+                    true,
+                ),
+            ],
+            stroke_width: 2.0,
+            color: "black".into(),
+            dots: vec![],
+        };
+        let svg = to_svg(&drawing);
+        assert!(
+            svg.contains(r#"width="40" height="30" viewBox="0 0 40 30""#),
+            "{svg}"
+        );
+        assert_eq!(svg.matches("<path ").count(), 2);
+        assert_eq!(svg.matches('Z').count(), 1);
+        let tree = usvg::Tree::from_str(&svg, &usvg::Options::default()).expect("usvg parses it");
+        assert_eq!(tree.size().width(), 40.0);
+    }
+}
