@@ -75,6 +75,9 @@ pub enum ReconstructError {
 
 /// Reconstructs curves from a planar point set with no parameter.
 ///
+/// This is [`NeighbourGraph::delaunay`] followed by [`crawl`] with [`paper_closable`], on the
+/// distinct points in lexicographic order.
+///
 /// Exact duplicate points are merged into the first occurrence (reported in
 /// [`Reconstruction::merged_duplicates`]). The result does not depend on the order of the input
 /// points: ties between equal distances are broken by the points' coordinates, never by their
@@ -103,7 +106,7 @@ pub fn reconstruct(points: &[Point]) -> Result<Reconstruction, ReconstructError>
 /// second-nearest neighbour. On evenly spaced samples the chain neighbour and the other extremity
 /// are often exactly equally far; breaking that tie by coordinates would leave perfectly sampled
 /// circles open. A *nearest* extremity qualifies too.
-pub(crate) fn paper_closable(
+pub fn paper_closable(
     positions: &[Point],
     graph: &NeighbourGraph,
     chain: &ChainEnds,
@@ -395,16 +398,21 @@ pub(crate) fn squared_distance(a: Point, b: Point) -> f64 {
 
 /// A chain the crawl built: vertex ids in order, and whether it was closed.
 #[derive(Clone, Debug)]
-pub(crate) struct Chain {
+pub struct Chain {
+    /// Vertex ids in order along the chain.
     pub vertices: VecDeque<u32>,
+    /// Whether the closing edge between the two ends was added.
     pub closed: bool,
 }
 
 /// What a closing rule sees of a terminated chain.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct ChainEnds {
+pub struct ChainEnds {
+    /// One extremity.
     pub front: u32,
+    /// The other extremity.
     pub back: u32,
+    /// Number of edges in the chain (vertices − 1).
     pub edge_count: usize,
 }
 
@@ -412,7 +420,7 @@ pub(crate) struct ChainEnds {
 /// in the order of their seeds, including chains of two vertices.
 ///
 /// `closable` decides, for a terminated chain, whether to add the edge between its extremities.
-pub(crate) fn crawl(
+pub fn crawl(
     positions: &[Point],
     graph: &NeighbourGraph,
     mut closable: impl FnMut(&ChainEnds) -> bool,
