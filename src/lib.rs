@@ -12,6 +12,9 @@ pub mod pointfile;
 pub mod pointset;
 pub mod reconstruct;
 pub mod render;
+pub mod sample;
+pub mod sketch;
+pub mod strokes;
 pub mod svg;
 
 pub use kurbo::Point;

@@ -106,11 +106,7 @@ pub fn reconstruct(points: &[Point]) -> Result<Reconstruction, ReconstructError>
 /// second-nearest neighbour. On evenly spaced samples the chain neighbour and the other extremity
 /// are often exactly equally far; breaking that tie by coordinates would leave perfectly sampled
 /// circles open. A *nearest* extremity qualifies too.
-pub fn paper_closable(
-    positions: &[Point],
-    graph: &NeighbourGraph,
-    chain: &ChainEnds,
-) -> bool {
+pub fn paper_closable(positions: &[Point], graph: &NeighbourGraph, chain: &ChainEnds) -> bool {
     if chain.edge_count <= 2 || !graph.has_edge(chain.front, chain.back) {
         return false;
     }
@@ -229,7 +225,7 @@ fn lexicographic(a: Point, b: Point) -> Ordering {
 /// Open chains start at the end with the smaller vertex id; closed chains start at their smallest
 /// id and go towards the smaller of its two neighbours. Vertex ids are canonical, so this
 /// orientation is a property of the geometry alone.
-pub(crate) fn canonical_orientation(vertices: VecDeque<u32>, closed: bool) -> Vec<u32> {
+pub fn canonical_orientation(vertices: VecDeque<u32>, closed: bool) -> Vec<u32> {
     let mut vertices: Vec<u32> = vertices.into();
     if vertices.len() < 2 {
         return vertices;
@@ -391,7 +387,8 @@ impl NeighbourGraph {
     }
 }
 
-pub(crate) fn squared_distance(a: Point, b: Point) -> f64 {
+/// The squared Euclidean distance between two points.
+pub fn squared_distance(a: Point, b: Point) -> f64 {
     let (dx, dy) = (a.x - b.x, a.y - b.y);
     dx * dx + dy * dy
 }

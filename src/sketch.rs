@@ -1,0 +1,376 @@
+//! Reconstructs the shapes of a skip-stroke sketch from its sampled pen strokes: the crawl of
+//! Parakkat & Muthuganapathy (2016, Algorithm 1) run on a neighbour graph made of the strokes' own
+//! edges and of bridges across the gaps between stroke ends.
+//!
+//! The paper crawls the Delaunay triangulation of all samples (§4.2). On real sketches that joins
+//! the end of an open stroke to the middle of a nearby stroke and zig-zags between strokes drawn
+//! side by side: the triangulation does not know which samples the pen drew in one go. Here it
+//! does: within a stroke only the stroke's own edges are offered, and only the pen's lift-off
+//! points (free stroke ends) may be bridged, to each other, along Delaunay edges. The crawl then
+//! decides, with the paper's seeds, candidates, `d > d1` stop and a closing rule, how the strokes
+//! chain into shapes. [`Method::Points`] keeps the paper's plain crawl for comparison.
+
+use std::collections::HashMap;
+
+use kurbo::Point;
+
+use crate::reconstruct::{self, crawl, squared_distance, ChainEnds, NeighbourGraph};
+use crate::strokes::StrokeEnd;
+
+/// A stroke after sampling: what [`connect_strokes`] works on.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SampledStroke {
+    /// Samples in order along the stroke.
+    pub points: Vec<Point>,
+    /// Whether the stroke is a loop.
+    pub closed: bool,
+    /// How its first and last sample end.
+    pub ends: [StrokeEnd; 2],
+}
+
+/// A reconstructed shape outline, in pixel coordinates.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TracedCurve {
+    /// Points in order along the curve (a closed curve does not repeat its first point).
+    pub points: Vec<Point>,
+    /// Whether the curve is closed.
+    pub closed: bool,
+}
+
+/// How samples are connected into curves.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Method {
+    /// The crawl on stroke edges and gap bridges (the default; see the module documentation).
+    #[default]
+    Strokes,
+    /// The paper's crawl on the Delaunay triangulation of all samples, ignoring which stroke
+    /// they came from.
+    Points,
+}
+
+/// Connects sampled strokes into curves with `method`. `spacing` is the sample spacing; curves
+/// shorter than `minimum_length` are dropped as stray marks.
+pub fn connect(
+    strokes: &[SampledStroke],
+    method: Method,
+    spacing: f64,
+    minimum_length: f64,
+) -> Vec<TracedCurve> {
+    let curves = match method {
+        Method::Strokes => connect_strokes(strokes, spacing),
+        Method::Points => crawl_all_samples(strokes),
+    };
+    curves
+        .into_iter()
+        .filter(|curve| curve_length(curve) >= minimum_length)
+        .collect()
+}
+
+fn curve_length(curve: &TracedCurve) -> f64 {
+    let open: f64 = curve.points.windows(2).map(|w| w[0].distance(w[1])).sum();
+    match (curve.closed, curve.points.first(), curve.points.last()) {
+        (true, Some(&first), Some(&last)) => open + first.distance(last),
+        _ => open,
+    }
+}
+
+/// The paper's approach: one point set, one crawl.
+fn crawl_all_samples(strokes: &[SampledStroke]) -> Vec<TracedCurve> {
+    let points: Vec<Point> = strokes
+        .iter()
+        .flat_map(|s| s.points.iter().copied())
+        .collect();
+    let Ok(result) = reconstruct::reconstruct(&points) else {
+        return Vec::new(); // pixel coordinates are always finite and in range
+    };
+    result
+        .curves
+        .iter()
+        .map(|curve| TracedCurve {
+            points: curve.indices.iter().map(|&i| points[i]).collect(),
+            closed: curve.closed,
+        })
+        .collect()
+}
+
+/// A free stroke end: a vertex and which end of which stroke it is.
+#[derive(Clone, Copy, Debug)]
+struct FreeEnd {
+    vertex: u32,
+    stroke: usize,
+}
+
+/// The crawl on stroke edges and bridges (see the module documentation).
+pub fn connect_strokes(strokes: &[SampledStroke], spacing: f64) -> Vec<TracedCurve> {
+    // Vertices: every distinct sample. A sample that repeats an earlier one (strokes crossing
+    // exactly on a sample) is dropped from the later stroke.
+    let mut positions: Vec<Point> = Vec::new();
+    let mut vertex_at: HashMap<(u64, u64), u32> = HashMap::new();
+    let mut stroke_vertices: Vec<Vec<u32>> = Vec::with_capacity(strokes.len());
+    let mut stroke_of_vertex: Vec<usize> = Vec::new();
+    for (s, stroke) in strokes.iter().enumerate() {
+        let mut vertices = Vec::with_capacity(stroke.points.len());
+        for &p in &stroke.points {
+            let key = (p.x.to_bits(), p.y.to_bits());
+            if vertex_at.contains_key(&key) {
+                continue;
+            }
+            let v = positions.len() as u32;
+            vertex_at.insert(key, v);
+            positions.push(p);
+            stroke_of_vertex.push(s);
+            vertices.push(v);
+        }
+        stroke_vertices.push(vertices);
+    }
+    let Ok(delaunay) = NeighbourGraph::delaunay(&positions) else {
+        return Vec::new(); // pixel coordinates are always finite and in range
+    };
+
+    let mut edges: Vec<(u32, u32)> = Vec::new();
+    let mut free_ends: Vec<FreeEnd> = Vec::new();
+    // Points where a chain ending at this vertex should be extended to (T-junctions).
+    let mut attachment: HashMap<u32, Point> = HashMap::new();
+    for (s, (stroke, vertices)) in strokes.iter().zip(&stroke_vertices).enumerate() {
+        edges.extend(vertices.windows(2).map(|w| (w[0], w[1])));
+        if stroke.closed && vertices.len() > 2 {
+            edges.push((vertices[vertices.len() - 1], vertices[0]));
+            continue;
+        }
+        let (Some(&first), Some(&last)) = (vertices.first(), vertices.last()) else {
+            continue;
+        };
+        for (end, vertex) in stroke.ends.iter().zip([first, last]) {
+            match *end {
+                StrokeEnd::Free => free_ends.push(FreeEnd { vertex, stroke: s }),
+                StrokeEnd::Attached(point) => {
+                    attachment.insert(vertex, point);
+                }
+            }
+        }
+    }
+    edges.extend(match_gap_bridges(
+        &positions,
+        &delaunay,
+        &free_ends,
+        &stroke_vertices,
+        spacing,
+    ));
+    let graph = NeighbourGraph::from_edges(&positions, edges);
+
+    // Closing: the two extremities must be joined by a stroke edge or an accepted bridge. The
+    // graph only holds plausible connections, so this is the paper's "second-nearest" rule with
+    // the neighbours that are not plausible left out.
+    let chains = crawl(&positions, &graph, |ends: &ChainEnds| {
+        ends.edge_count > 2 && graph.has_edge(ends.front, ends.back)
+    });
+    chains
+        .into_iter()
+        .filter(|chain| chain.vertices.len() >= 2)
+        .map(|chain| {
+            let vertices = reconstruct::canonical_orientation(chain.vertices, chain.closed);
+            let mut points: Vec<Point> = vertices.iter().map(|&v| positions[v as usize]).collect();
+            if !chain.closed {
+                if let Some(&p) = attachment.get(&vertices[0]) {
+                    points.insert(0, p);
+                }
+                if let Some(&p) = attachment.get(&vertices[vertices.len() - 1]) {
+                    points.push(p);
+                }
+            }
+            TracedCurve {
+                points,
+                closed: chain.closed,
+            }
+        })
+        .collect()
+}
+
+/// Chooses the bridges across pen lifts: pairs of free stroke ends joined by a Delaunay edge,
+/// matched greedily from the shortest, each end used once.
+///
+/// DECISION: greedy shortest-first matching rather than the crawl's own greedy choice, so that an
+/// end cannot be taken by a farther end that happens to be crawled first (the end of an open
+/// mouth stealing the end of a nearby face outline).
+///
+/// DECISION: a bridge may be at most twice the drawing's typical gap, the median matched length
+/// clamped to one to three sample spacings. Pen lifts in one sketch are of a similar size;
+/// bridges much longer than the typical one join things the person drew apart (two eyebrows, the
+/// corners of an open mouth). The clamp keeps the rule sane when almost all ends are true open
+/// ends (a drawing in continuous strokes) or when there is no gap at all.
+fn match_gap_bridges(
+    positions: &[Point],
+    delaunay: &NeighbourGraph,
+    free_ends: &[FreeEnd],
+    stroke_vertices: &[Vec<u32>],
+    spacing: f64,
+) -> Vec<(u32, u32)> {
+    // How many bridges each vertex may take: one per free end it is (two for a one-sample dot).
+    let mut slots: HashMap<u32, u8> = HashMap::new();
+    for end in free_ends {
+        *slots.entry(end.vertex).or_default() += 1;
+    }
+    let stroke_of: HashMap<u32, usize> = free_ends.iter().map(|e| (e.vertex, e.stroke)).collect();
+    let mut candidates: Vec<(f64, u32, u32)> = Vec::new();
+    for end in free_ends {
+        for &other in delaunay.neighbours(end.vertex) {
+            let Some(&other_stroke) = stroke_of.get(&other) else {
+                continue;
+            };
+            if other <= end.vertex {
+                continue;
+            }
+            // A stroke may close on itself only if it is long enough to be a loop: the paper's
+            // "more than two edges" before closing.
+            if other_stroke == end.stroke && stroke_vertices[end.stroke].len() < 4 {
+                continue;
+            }
+            let length =
+                squared_distance(positions[end.vertex as usize], positions[other as usize]);
+            candidates.push((length, end.vertex, other));
+        }
+    }
+    candidates.sort_by(|a, b| a.0.total_cmp(&b.0).then((a.1, a.2).cmp(&(b.1, b.2))));
+    candidates.dedup();
+    let mut matched: Vec<(f64, u32, u32)> = Vec::new();
+    let mut remaining = slots;
+    for (length, a, b) in candidates {
+        if remaining[&a] == 0 || remaining[&b] == 0 || matched.iter().any(|m| (m.1, m.2) == (a, b))
+        {
+            continue;
+        }
+        *remaining.get_mut(&a).expect("free end") -= 1;
+        *remaining.get_mut(&b).expect("free end") -= 1;
+        matched.push((length.sqrt(), a, b));
+    }
+    if matched.is_empty() {
+        return Vec::new();
+    }
+    let mut lengths: Vec<f64> = matched.iter().map(|m| m.0).collect();
+    lengths.sort_by(f64::total_cmp);
+    let typical_gap = lengths[lengths.len() / 2].clamp(spacing, 3.0 * spacing);
+    matched
+        .into_iter()
+        .filter(|m| m.0 <= 2.0 * typical_gap)
+        .map(|m| (m.1, m.2))
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn open(points: &[(f64, f64)]) -> SampledStroke {
+        SampledStroke {
+            points: points.iter().map(|&(x, y)| Point::new(x, y)).collect(),
+            closed: false,
+            ends: [StrokeEnd::Free, StrokeEnd::Free],
+        }
+    }
+
+    /// Points along a circle arc from angle `from` to `to` (degrees), about `step` apart.
+    fn arc(center: (f64, f64), radius: f64, from: f64, to: f64, step: f64) -> SampledStroke {
+        let length = radius * (to - from).to_radians();
+        let count = (length / step).ceil().max(1.0) as usize;
+        let points: Vec<(f64, f64)> = (0..=count)
+            .map(|k| {
+                let angle = (from + (to - from) * k as f64 / count as f64).to_radians();
+                (
+                    center.0 + radius * angle.cos(),
+                    center.1 + radius * angle.sin(),
+                )
+            })
+            .collect();
+        open(&points)
+    }
+
+    /// A circle drawn as strokes of `stroke_degrees` with gaps of `gap_degrees`.
+    fn skip_stroke_circle(
+        center: (f64, f64),
+        radius: f64,
+        stroke_degrees: f64,
+        gap_degrees: f64,
+    ) -> Vec<SampledStroke> {
+        let mut strokes = Vec::new();
+        let mut angle = 0.0;
+        while angle + stroke_degrees <= 360.0 - gap_degrees + 1e-9 {
+            strokes.push(arc(center, radius, angle, angle + stroke_degrees, 4.0));
+            angle += stroke_degrees + gap_degrees;
+        }
+        strokes
+    }
+
+    #[test]
+    fn a_skip_stroke_circle_becomes_one_closed_curve() {
+        let strokes = skip_stroke_circle((100.0, 100.0), 60.0, 40.0, 5.0);
+        assert_eq!(strokes.len(), 8);
+        let curves = connect(&strokes, Method::Strokes, 4.0, 6.0);
+        assert_eq!(curves.len(), 1, "{curves:?}");
+        assert!(curves[0].closed);
+        let total: usize = strokes.iter().map(|s| s.points.len()).sum();
+        assert_eq!(curves[0].points.len(), total);
+    }
+
+    #[test]
+    fn an_open_mouth_inside_a_face_stays_open_and_apart() {
+        let mut strokes = skip_stroke_circle((100.0, 100.0), 80.0, 30.0, 6.0);
+        // A mouth of two strokes with a small gap, its corners 30 px from the outline's gaps.
+        strokes.push(arc((100.0, 90.0), 50.0, 40.0, 88.0, 4.0));
+        strokes.push(arc((100.0, 90.0), 50.0, 92.0, 140.0, 4.0));
+        let curves = connect(&strokes, Method::Strokes, 4.0, 6.0);
+        assert_eq!(curves.len(), 2, "{curves:?}");
+        let closed: Vec<bool> = curves.iter().map(|c| c.closed).collect();
+        assert!(
+            closed.contains(&true) && closed.contains(&false),
+            "{closed:?}"
+        );
+        let mouth = curves.iter().find(|c| !c.closed).unwrap();
+        assert!(mouth
+            .points
+            .iter()
+            .all(|p| p.distance(Point::new(100.0, 100.0)) < 60.0));
+    }
+
+    #[test]
+    fn two_open_strokes_far_apart_are_not_bridged() {
+        let strokes = vec![
+            open(&[(0.0, 0.0), (4.0, 0.0), (8.0, 0.0), (12.0, 0.0), (16.0, 0.0)]),
+            open(&[(40.0, 0.0), (44.0, 0.0), (48.0, 0.0), (52.0, 0.0)]),
+        ];
+        let curves = connect(&strokes, Method::Strokes, 4.0, 6.0);
+        assert_eq!(curves.len(), 2, "{curves:?}");
+        assert!(curves.iter().all(|c| !c.closed));
+    }
+
+    #[test]
+    fn a_t_stem_ends_on_the_bar() {
+        let stem_points: Vec<(f64, f64)> = (0..11).map(|k| (10.0, 58.0 - 4.0 * k as f64)).collect();
+        let mut stem = open(&stem_points);
+        stem.ends[1] = StrokeEnd::Attached(Point::new(10.0, 14.0));
+        let bar = open(&[
+            (0.0, 14.0),
+            (4.0, 14.0),
+            (8.0, 14.0),
+            (12.0, 14.0),
+            (16.0, 14.0),
+            (20.0, 14.0),
+        ]);
+        let curves = connect(&[bar, stem], Method::Strokes, 4.0, 6.0);
+        assert_eq!(curves.len(), 2, "{curves:?}");
+        let stem = curves.iter().find(|c| c.points.len() == 12).expect("stem");
+        assert!(stem.points.contains(&Point::new(10.0, 14.0)), "{stem:?}");
+    }
+
+    #[test]
+    fn stray_marks_are_dropped() {
+        let strokes = vec![open(&[(0.0, 0.0), (2.0, 0.0)])];
+        assert!(connect(&strokes, Method::Strokes, 4.0, 6.0).is_empty());
+    }
+
+    #[test]
+    fn the_paper_method_also_runs() {
+        let strokes = skip_stroke_circle((100.0, 100.0), 60.0, 40.0, 3.0);
+        let curves = connect(&strokes, Method::Points, 4.0, 6.0);
+        assert!(!curves.is_empty());
+    }
+}
