@@ -22,13 +22,35 @@ pub fn simplification_tolerance(stroke_width: f64) -> f64 {
     (0.25 * stroke_width).max(0.7)
 }
 
+/// Ramer–Douglas–Peucker simplification of an ordered chain of points: a subset of its vertices
+/// (always including the ends of an open chain) within `tolerance` of the original.
+pub fn simplify_polyline(points: &[Point], closed: bool, tolerance: f64) -> Vec<Point> {
+    if points.len() <= 2 {
+        return points.to_vec();
+    }
+    let kept = simplification_mask(points, closed, tolerance);
+    points
+        .iter()
+        .zip(&kept)
+        .filter(|(_, &k)| k)
+        .map(|(&p, _)| p)
+        .collect()
+}
+
 /// Samples an ordered chain of points. Open chains keep their two ends; closed chains are treated
 /// as a loop (the last point joins the first, which is not repeated).
 pub fn sample_polyline(points: &[Point], closed: bool, spacing: f64, tolerance: f64) -> Vec<Point> {
     if points.len() <= 2 {
         return subdivide(points, closed, spacing);
     }
-    let kept = if closed {
+    let vertices = simplify_polyline(points, closed, tolerance);
+    subdivide(&vertices, closed, spacing)
+}
+
+/// Which points Ramer–Douglas–Peucker keeps; a closed chain is split at the point farthest
+/// from its first point and both halves are simplified.
+fn simplification_mask(points: &[Point], closed: bool, tolerance: f64) -> Vec<bool> {
+    if closed {
         // Split the loop at the point farthest from the first one, and simplify both halves.
         let far = (1..points.len())
             .max_by(|&a, &b| {
@@ -56,14 +78,7 @@ pub fn sample_polyline(points: &[Point], closed: bool, spacing: f64, tolerance: 
         keep[points.len() - 1] = true;
         douglas_peucker(points, 0, points.len() - 1, tolerance, &mut keep);
         keep
-    };
-    let vertices: Vec<Point> = points
-        .iter()
-        .zip(&kept)
-        .filter(|(_, &k)| k)
-        .map(|(&p, _)| p)
-        .collect();
-    subdivide(&vertices, closed, spacing)
+    }
 }
 
 /// Marks the points of `points[first..=last]` that Ramer–Douglas–Peucker keeps at `tolerance`.
