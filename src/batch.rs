@@ -865,7 +865,8 @@ impl Console {
         }
         let bar = ProgressBar::new(total as u64);
         if let Ok(style) = ProgressStyle::with_template(
-            "{wide_bar} {pos}/{len} files  {per_sec}  {elapsed} elapsed, ETA {eta}",
+            // `per_sec:1`: one decimal (the width field sets the precision for rates).
+            "{wide_bar} {pos}/{len} files  {per_sec:1}  {elapsed} elapsed, ETA {eta}",
         ) {
             bar.set_style(style);
         }
