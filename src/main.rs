@@ -10,6 +10,7 @@ use std::process::ExitCode;
 
 use clap::Parser;
 use cli::{Cli, Command, PointsArgs, PointsFormat, RenderArgs};
+use crawltrace::batch::{describe_io, write_atomically};
 use crawltrace::{pointfile, pointset, reconstruct, render};
 
 /// A failure to report as `error: <file>: <what>` with an exit code.
@@ -93,7 +94,7 @@ fn run_points(args: PointsArgs) -> Result<ExitCode, Failure> {
     match output {
         Some(path) => {
             refuse_to_overwrite_input(&path, &[&args.input])?;
-            write_atomically(&path, &text)?;
+            write_atomically(&path, &text).map_err(|e| Failure::new(&path, describe_io(&e)))?;
         }
         None => io::stdout()
             .lock()
@@ -112,29 +113,14 @@ fn run_render(args: RenderArgs) -> Result<ExitCode, Failure> {
     image
         .write_to(&mut io::Cursor::new(&mut png), image::ImageFormat::Png)
         .map_err(|e| Failure::new(&args.output, e))?;
-    write_atomically(&args.output, &png)?;
+    write_atomically(&args.output, &png)
+        .map_err(|e| Failure::new(&args.output, describe_io(&e)))?;
     Ok(ExitCode::SUCCESS)
 }
 
 fn has_extension(path: &Path, extension: &str) -> bool {
     path.extension()
         .is_some_and(|e| e.eq_ignore_ascii_case(extension))
-}
-
-/// A short description of an I/O error, without Rust's `(os error N)` suffix.
-fn describe_io(error: &io::Error) -> String {
-    match error.kind() {
-        io::ErrorKind::NotFound => "no such file".to_string(),
-        io::ErrorKind::PermissionDenied => "permission denied".to_string(),
-        io::ErrorKind::IsADirectory => "is a folder, not a file".to_string(),
-        _ => {
-            let text = error.to_string();
-            match text.find(" (os error") {
-                Some(cut) => text[..cut].to_string(),
-                None => text,
-            }
-        }
-    }
 }
 
 fn refuse_to_overwrite_input(output: &Path, inputs: &[&Path]) -> Result<(), Failure> {
@@ -146,23 +132,5 @@ fn refuse_to_overwrite_input(output: &Path, inputs: &[&Path]) -> Result<(), Fail
             return Err(Failure::new(output, "refusing to overwrite the input"));
         }
     }
-    Ok(())
-}
-
-/// Writes `bytes` to a temporary file beside `path`, then renames it over `path`, so a reader
-/// never sees a half-written file.
-fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), Failure> {
-    let folder = match path.parent() {
-        Some(parent) if !parent.as_os_str().is_empty() => parent,
-        _ => Path::new("."),
-    };
-    let mut temporary =
-        tempfile::NamedTempFile::new_in(folder).map_err(|e| Failure::new(path, describe_io(&e)))?;
-    temporary
-        .write_all(bytes)
-        .map_err(|e| Failure::new(path, describe_io(&e)))?;
-    temporary
-        .persist(path)
-        .map_err(|e| Failure::new(path, describe_io(&e.error)))?;
     Ok(())
 }
