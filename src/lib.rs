@@ -8,6 +8,7 @@
 #![warn(missing_docs)]
 
 pub mod bitmap;
+pub mod decode;
 pub mod pointfile;
 pub mod pointset;
 pub mod reconstruct;
