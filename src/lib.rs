@@ -7,6 +7,7 @@
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
+pub mod binarize;
 pub mod bitmap;
 pub mod decode;
 pub mod pointfile;
