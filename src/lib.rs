@@ -9,6 +9,7 @@
 
 pub mod binarize;
 pub mod bitmap;
+pub mod clean;
 pub mod decode;
 pub mod pointfile;
 pub mod pointset;
