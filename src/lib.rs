@@ -16,6 +16,7 @@ pub mod pointset;
 pub mod reconstruct;
 pub mod render;
 pub mod svg;
+pub mod thin;
 
 pub use kurbo::Point;
 pub use reconstruct::{reconstruct, Curve, Reconstruction};
