@@ -8,7 +8,10 @@
 #![warn(missing_docs)]
 
 pub mod batch;
+pub mod binarize;
 pub mod bitmap;
+pub mod clean;
+pub mod decode;
 pub mod fit;
 pub mod pointfile;
 pub mod pointset;
@@ -18,6 +21,7 @@ pub mod sample;
 pub mod sketch;
 pub mod strokes;
 pub mod svg;
+pub mod thin;
 
 pub use kurbo::Point;
 pub use reconstruct::{reconstruct, Curve, Reconstruction};
