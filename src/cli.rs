@@ -16,6 +16,8 @@ pub struct Cli {
 /// The subcommands.
 #[derive(Debug, Subcommand)]
 pub enum Command {
+    /// Trace scanned line drawings (image files or folders of them) into SVG.
+    Trace(TraceArgs),
     /// Reconstruct curves from a point set (one `x y` point a line) and write them as JSON or SVG.
     Points(PointsArgs),
     /// Rasterize an SVG file to PNG with resvg.
@@ -55,4 +57,89 @@ pub struct RenderArgs {
     /// Pixels per SVG pixel.
     #[arg(long, default_value_t = 1.0)]
     pub scale: f32,
+}
+
+/// Arguments of `crawltrace trace`.
+#[derive(Debug, clap::Args)]
+pub struct TraceArgs {
+    /// Image files (any format the `image` crate reads) or folders of them.
+    #[arg(required = true, value_name = "INPUT")]
+    pub inputs: Vec<PathBuf>,
+    /// Output: for one image, the SVG file (`-` for standard output; default `<stem>.svg` beside
+    /// the input); for several images or a folder, the output folder.
+    #[arg(short, long, value_name = "OUT")]
+    pub output: Option<PathBuf>,
+
+    /// Fixed gray level (0–255) below which a pixel is ink, instead of the automatic threshold.
+    #[arg(
+        long,
+        value_name = "N",
+        conflicts_with = "adaptive",
+        help_heading = "Thresholding"
+    )]
+    pub threshold: Option<u8>,
+    /// Always use the adaptive threshold (for uneven lighting; chosen automatically when needed).
+    #[arg(long, help_heading = "Thresholding")]
+    pub adaptive: bool,
+    /// Light ink on dark paper.
+    #[arg(long, help_heading = "Thresholding")]
+    pub invert: bool,
+
+    /// Sample spacing along strokes in pixels (default: 1.5 × the measured pen width).
+    #[arg(long, value_name = "PX", help_heading = "Reconstruction")]
+    pub spacing: Option<f64>,
+    /// How samples are connected: `strokes` (default) knows which samples the pen drew together;
+    /// `points` is the paper's plain crawl on all samples.
+    #[arg(long, value_enum, default_value_t = MethodArg::Strokes, help_heading = "Reconstruction")]
+    pub method: MethodArg,
+
+    /// Write straight segments instead of smooth cubic Béziers.
+    #[arg(long, help_heading = "Output")]
+    pub no_smooth: bool,
+    /// Largest deviation of a path from the reconstructed curve, in pixels (default: a quarter of
+    /// the pen width, at least 0.5).
+    #[arg(long, value_name = "TOL", help_heading = "Output")]
+    pub simplify: Option<f64>,
+    /// Stroke width of the SVG paths (default: the measured pen width).
+    #[arg(long, value_name = "PX", help_heading = "Output")]
+    pub stroke_width: Option<f64>,
+    /// Stroke colour of the SVG paths.
+    #[arg(long, default_value = "#000000", help_heading = "Output")]
+    pub color: String,
+    /// Write pictures of each stage (mask, skeleton, samples, triangulation, result) into DIR.
+    #[arg(long, value_name = "DIR", help_heading = "Output")]
+    pub debug: Option<PathBuf>,
+    /// Print nothing but errors.
+    #[arg(short, long)]
+    pub quiet: bool,
+
+    /// Scan folders recursively.
+    #[arg(short, long, help_heading = "Folders and batches")]
+    pub recursive: bool,
+    /// Only trace files matching this pattern (`scan-*`, or `**/*.png` against the path inside
+    /// the folder).
+    #[arg(long, value_name = "PATTERN", help_heading = "Folders and batches")]
+    pub glob: Option<String>,
+    /// Number of images traced at once (default: all cores).
+    #[arg(short, long, value_name = "N", help_heading = "Folders and batches")]
+    pub jobs: Option<usize>,
+    /// Trace again even when the output is newer than the input.
+    #[arg(long, help_heading = "Folders and batches")]
+    pub force: bool,
+    /// Write one JSON line per input (path, status, curves, closed curves, seconds, error).
+    #[arg(long, value_name = "FILE", help_heading = "Folders and batches")]
+    pub report: Option<PathBuf>,
+    /// Take only shard K of N (`--shard 2/8`): a fixed share of the inputs chosen by path, for
+    /// splitting a folder across machines.
+    #[arg(long, value_name = "K/N", help_heading = "Folders and batches")]
+    pub shard: Option<crawltrace::batch::Shard>,
+}
+
+/// `--method` values.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum MethodArg {
+    /// Crawl on stroke edges and gap bridges (default).
+    Strokes,
+    /// The paper's crawl on the Delaunay triangulation of all samples.
+    Points,
 }

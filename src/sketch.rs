@@ -232,16 +232,35 @@ fn match_gap_bridges(
     }
     candidates.sort_by(|a, b| a.0.total_cmp(&b.0).then((a.1, a.2).cmp(&(b.1, b.2))));
     candidates.dedup();
+    // Strokes joined by accepted bridges, with their total length, to see when a bridge would
+    // close a loop.
+    let stroke_length = |stroke: usize| -> f64 {
+        stroke_vertices[stroke]
+            .windows(2)
+            .map(|w| positions[w[0] as usize].distance(positions[w[1] as usize]))
+            .sum()
+    };
+    let mut groups = StrokeGroups::new(stroke_vertices.len(), stroke_length);
     let mut matched: Vec<(f64, u32, u32)> = Vec::new();
     let mut remaining = slots;
-    for (length, a, b) in candidates {
+    for (squared_length, a, b) in candidates {
         if remaining[&a] == 0 || remaining[&b] == 0 || matched.iter().any(|m| (m.1, m.2) == (a, b))
         {
             continue;
         }
+        let length = squared_length.sqrt();
+        let (stroke_a, stroke_b) = (stroke_of[&a], stroke_of[&b]);
+        // DECISION: a bridge that closes a loop must be short next to the loop: at most a quarter
+        // of its length. A skip-stroke gap is a small part of the outline it interrupts; an
+        // opening as wide as a quarter of the curve is drawn on purpose (an open mouth, a "C"),
+        // and tiny loops of a few dashes are no shapes at all.
+        if groups.same(stroke_a, stroke_b) && length > 0.25 * (groups.length(stroke_a) + length) {
+            continue;
+        }
+        groups.join(stroke_a, stroke_b, length);
         *remaining.get_mut(&a).expect("free end") -= 1;
         *remaining.get_mut(&b).expect("free end") -= 1;
-        matched.push((length.sqrt(), a, b));
+        matched.push((length, a, b));
     }
     if matched.is_empty() {
         return Vec::new();
@@ -254,6 +273,48 @@ fn match_gap_bridges(
         .filter(|m| m.0 <= 2.0 * typical_gap)
         .map(|m| (m.1, m.2))
         .collect()
+}
+
+/// Union–find over strokes, tracking the total length of each group (strokes plus bridges).
+struct StrokeGroups {
+    parent: Vec<usize>,
+    length: Vec<f64>,
+}
+
+impl StrokeGroups {
+    fn new(count: usize, stroke_length: impl Fn(usize) -> f64) -> Self {
+        Self {
+            parent: (0..count).collect(),
+            length: (0..count).map(stroke_length).collect(),
+        }
+    }
+
+    fn root(&mut self, mut stroke: usize) -> usize {
+        while self.parent[stroke] != stroke {
+            self.parent[stroke] = self.parent[self.parent[stroke]];
+            stroke = self.parent[stroke];
+        }
+        stroke
+    }
+
+    fn same(&mut self, a: usize, b: usize) -> bool {
+        self.root(a) == self.root(b)
+    }
+
+    fn length(&mut self, stroke: usize) -> f64 {
+        let root = self.root(stroke);
+        self.length[root]
+    }
+
+    fn join(&mut self, a: usize, b: usize, bridge_length: f64) {
+        let (root_a, root_b) = (self.root(a), self.root(b));
+        if root_a == root_b {
+            self.length[root_a] += bridge_length;
+        } else {
+            self.parent[root_b] = root_a;
+            self.length[root_a] += self.length[root_b] + bridge_length;
+        }
+    }
 }
 
 #[cfg(test)]

@@ -39,6 +39,12 @@ pub struct Stroke {
 /// The result is deterministic: strokes come in the order of their first pixel in raster order.
 pub fn extract_strokes(skeleton: &Bitmap, stroke_width: f64) -> Vec<Stroke> {
     let mut graph = SkeletonGraph::trace(skeleton);
+    // Two strokes laid side by side enclose slivers of paper; their skeleton is a small loop (a
+    // bubble) between two junctions. A real drawn loop is much bigger than a few pen widths.
+    graph.collapse_bubbles((4.0 * stroke_width).max(8.0));
+    // A corner drawn with a thick pen fills with ink; its skeleton runs into the corner as a
+    // spur from a junction just inside it. The spur's tip is the corner.
+    graph.fold_corner_spurs((6.0 * stroke_width).max(6.0), (2.0 * stroke_width).max(4.0));
     // Thinning leaves a spur at every bump of a stroke's outline; bumps are at most about half a
     // pen width high, so their spurs are shorter than one pen width. Pruning can expose a new
     // spur (two spurs forking off one branch), hence a second round.
@@ -270,6 +276,121 @@ impl SkeletonGraph {
         })
     }
 
+    fn remove_branch(&mut self, branch: usize) {
+        self.branches[branch].removed = true;
+        if let Some((a, z)) = self.branches[branch].nodes {
+            for node in [a, z] {
+                self.nodes[node].ends.retain(|&(b, _)| b != branch);
+                self.nodes[node].pruned = self.nodes[node].ends.is_empty();
+            }
+        }
+    }
+
+    /// Removes small loops: a branch from a node back to itself, and all but the shortest of
+    /// several branches between the same two nodes, when shorter than `max_length`.
+    fn collapse_bubbles(&mut self, max_length: f64) {
+        let mut shortest_between: HashMap<(usize, usize), (f64, usize)> = HashMap::new();
+        let mut to_remove = Vec::new();
+        for (i, branch) in self.branches.iter().enumerate() {
+            let Some((a, z)) = branch.nodes else { continue };
+            let length = polyline_length(&branch.points);
+            if length >= max_length {
+                continue;
+            }
+            if a == z {
+                to_remove.push(i);
+                continue;
+            }
+            let key = (a.min(z), a.max(z));
+            match shortest_between.get(&key) {
+                Some(&(best, _)) if best <= length => to_remove.push(i),
+                Some(&(_, best_branch)) => {
+                    to_remove.push(best_branch);
+                    shortest_between.insert(key, (length, i));
+                }
+                None => {
+                    shortest_between.insert(key, (length, i));
+                }
+            }
+        }
+        to_remove.sort_unstable();
+        to_remove.dedup();
+        for branch in to_remove {
+            self.remove_branch(branch);
+        }
+    }
+
+    /// At a junction of exactly three branches where one is a spur shorter than `max_length`
+    /// pointing away from both others (each other branch leaves within 60° of the direction
+    /// opposite the spur), the spur is a filled corner: it is removed and the junction moves to
+    /// its tip, so the two sides meet there in a sharp corner.
+    fn fold_corner_spurs(&mut self, max_length: f64, direction_scale: f64) {
+        for node in 0..self.nodes.len() {
+            let ends = self.nodes[node].ends.clone();
+            if ends.len() != 3 {
+                continue;
+            }
+            // Of the short free-ended branches here, the one that points most squarely away
+            // from both others.
+            let mut best: Option<(f64, usize)> = None;
+            for (k, &(b, at_start)) in ends.iter().enumerate() {
+                let branch = &self.branches[b];
+                let (a, z) = branch.nodes.expect("node branches have nodes");
+                let far = if at_start { z } else { a };
+                if far == node
+                    || self.degree(far) != 1
+                    || polyline_length(&branch.points) >= max_length
+                {
+                    continue;
+                }
+                let direction = self.leaving_direction(b, at_start, direction_scale);
+                let score = ends
+                    .iter()
+                    .filter(|&&(other, _)| other != b)
+                    .map(|&(other, other_at_start)| {
+                        direction.dot(self.leaving_direction(
+                            other,
+                            other_at_start,
+                            direction_scale,
+                        ))
+                    })
+                    .fold(f64::NEG_INFINITY, f64::max);
+                if score < -0.5 && best.is_none_or(|(s, _)| score < s) {
+                    best = Some((score, k));
+                }
+            }
+            let Some((_, spur)) = best else { continue };
+            let (spur_branch, spur_at_start) = ends[spur];
+            let sides: Vec<(usize, bool)> = ends
+                .iter()
+                .copied()
+                .filter(|&(b, _)| b != spur_branch)
+                .collect();
+            if sides.len() != 2 {
+                continue;
+            }
+            let tip = {
+                let points = &self.branches[spur_branch].points;
+                if spur_at_start {
+                    points[points.len() - 1]
+                } else {
+                    points[0]
+                }
+            };
+            self.remove_branch(spur_branch);
+            self.nodes[node].position = tip;
+            for (b, at_start) in sides {
+                let points = &mut self.branches[b].points;
+                if at_start {
+                    points[0] = tip;
+                } else {
+                    let last = points.len() - 1;
+                    points[last] = tip;
+                }
+            }
+        }
+    }
+
     fn degree(&self, node: usize) -> usize {
         self.nodes[node].ends.len()
     }
@@ -298,11 +419,7 @@ impl SkeletonGraph {
             if self.degree(junction) < 3 {
                 continue;
             }
-            self.branches[branch].removed = true;
-            for node in [a, z] {
-                self.nodes[node].ends.retain(|&(b, _)| b != branch);
-                self.nodes[node].pruned = self.nodes[node].ends.is_empty();
-            }
+            self.remove_branch(branch);
         }
     }
 

@@ -1,0 +1,194 @@
+//! Pictures of what each stage saw, for `crawltrace trace --debug DIR`: ink mask, skeleton,
+//! sample points, the Delaunay triangulation with the chosen edges, and the result over the input.
+
+use image::{Rgb, RgbImage};
+use imageproc::drawing::{draw_filled_circle_mut, draw_line_segment_mut};
+use kurbo::Point;
+
+use crate::reconstruct::NeighbourGraph;
+use crate::render::render_svg;
+use crate::strokes::StrokeEnd;
+use crate::trace::Stages;
+
+const WHITE: Rgb<u8> = Rgb([255, 255, 255]);
+const INK: Rgb<u8> = Rgb([0, 0, 0]);
+const SKELETON: Rgb<u8> = Rgb([220, 20, 20]);
+const FREE_END: Rgb<u8> = Rgb([230, 120, 0]);
+const ATTACHED_END: Rgb<u8> = Rgb([150, 0, 200]);
+const DELAUNAY: Rgb<u8> = Rgb([200, 200, 215]);
+const OPEN_CURVE: Rgb<u8> = Rgb([230, 60, 20]);
+const CLOSED_CURVE: Rgb<u8> = Rgb([20, 90, 220]);
+
+/// The debug pictures, each with a file name (`1-mask.png` …), in pipeline order. `svg` is the
+/// traced result, drawn over the input in the last picture.
+pub fn debug_images(stages: &Stages, svg: &str) -> Vec<(&'static str, RgbImage)> {
+    let (width, height) = stages.gray.dimensions();
+    let faded = || {
+        RgbImage::from_fn(width, height, |x, y| {
+            let level = 200 + stages.gray.get_pixel(x, y).0[0] / 5;
+            Rgb([level, level, level])
+        })
+    };
+
+    let mask = RgbImage::from_fn(width, height, |x, y| {
+        if stages.mask.get(x as usize, y as usize) {
+            INK
+        } else {
+            WHITE
+        }
+    });
+
+    let mut skeleton = faded();
+    for y in 0..stages.skeleton.height() {
+        for x in 0..stages.skeleton.width() {
+            if stages.skeleton.get(x, y) {
+                skeleton.put_pixel(x as u32, y as u32, SKELETON);
+            }
+        }
+    }
+
+    let mut samples = faded();
+    for (k, stroke) in stages.strokes.iter().enumerate() {
+        let color = palette(k);
+        for pair in stroke.points.windows(2) {
+            line(&mut samples, pair[0], pair[1], color);
+        }
+        for &p in &stroke.points {
+            dot(&mut samples, p, 1, color);
+        }
+        if !stroke.closed {
+            for (end, p) in stroke
+                .ends
+                .iter()
+                .zip([stroke.points.first(), stroke.points.last()])
+            {
+                let (Some(&p), color) = (
+                    p,
+                    match end {
+                        StrokeEnd::Free => FREE_END,
+                        StrokeEnd::Attached(_) => ATTACHED_END,
+                    },
+                ) else {
+                    continue;
+                };
+                dot(&mut samples, p, 3, color);
+            }
+        }
+    }
+
+    let mut delaunay = faded();
+    let positions: Vec<Point> = {
+        let mut all: Vec<Point> = stages
+            .strokes
+            .iter()
+            .flat_map(|s| s.points.iter().copied())
+            .collect();
+        all.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
+        all.dedup();
+        all
+    };
+    if let Ok(graph) = NeighbourGraph::delaunay(&positions) {
+        for v in 0..graph.vertex_count() as u32 {
+            for &w in graph.neighbours(v) {
+                if w > v {
+                    line(
+                        &mut delaunay,
+                        positions[v as usize],
+                        positions[w as usize],
+                        DELAUNAY,
+                    );
+                }
+            }
+        }
+    }
+    for curve in &stages.curves {
+        let color = if curve.closed {
+            CLOSED_CURVE
+        } else {
+            OPEN_CURVE
+        };
+        for pair in curve.points.windows(2) {
+            line(&mut delaunay, pair[0], pair[1], color);
+        }
+        if let (true, Some(&first), Some(&last)) =
+            (curve.closed, curve.points.first(), curve.points.last())
+        {
+            line(&mut delaunay, last, first, color);
+        }
+        for &p in &curve.points {
+            dot(&mut delaunay, p, 1, color);
+        }
+    }
+
+    let mut result = faded();
+    if let Ok(rendered) = render_svg(&recolor(svg), 1.0) {
+        for (x, y, pixel) in rendered.enumerate_pixels() {
+            if x < width && y < height && pixel.0[0] < 250 {
+                // The rendered paths are pure blue on white: blend by their coverage.
+                let coverage = 1.0 - f32::from(pixel.0[0]) / 255.0;
+                let under = result.get_pixel(x, y).0;
+                let mix = |a: u8, b: u8| {
+                    (f32::from(a) * (1.0 - coverage) + f32::from(b) * coverage) as u8
+                };
+                result.put_pixel(
+                    x,
+                    y,
+                    Rgb([mix(under[0], 20), mix(under[1], 90), mix(under[2], 220)]),
+                );
+            }
+        }
+    }
+
+    vec![
+        ("1-mask.png", mask),
+        ("2-skeleton.png", skeleton),
+        ("3-samples.png", samples),
+        ("4-delaunay.png", delaunay),
+        ("5-result.png", result),
+    ]
+}
+
+/// The traced SVG with its stroke colour made pure blue, so coverage can be read off the red
+/// channel whatever `--color` was.
+fn recolor(svg: &str) -> String {
+    match (svg.find("stroke=\""), svg.find("stroke-width")) {
+        (Some(start), Some(_)) => {
+            let value_start = start + "stroke=\"".len();
+            let value_end = svg[value_start..]
+                .find('"')
+                .map_or(value_start, |e| value_start + e);
+            format!("{}#1e5adc{}", &svg[..value_start], &svg[value_end..])
+        }
+        _ => svg.to_string(),
+    }
+}
+
+fn palette(k: usize) -> Rgb<u8> {
+    const COLORS: [[u8; 3]; 6] = [
+        [31, 119, 180],
+        [44, 160, 44],
+        [148, 103, 189],
+        [23, 190, 207],
+        [140, 86, 75],
+        [188, 189, 34],
+    ];
+    Rgb(COLORS[k % COLORS.len()])
+}
+
+fn line(image: &mut RgbImage, a: Point, b: Point, color: Rgb<u8>) {
+    draw_line_segment_mut(
+        image,
+        ((a.x - 0.5) as f32, (a.y - 0.5) as f32),
+        ((b.x - 0.5) as f32, (b.y - 0.5) as f32),
+        color,
+    );
+}
+
+fn dot(image: &mut RgbImage, p: Point, radius: i32, color: Rgb<u8>) {
+    draw_filled_circle_mut(
+        image,
+        ((p.x - 0.5) as i32, (p.y - 0.5) as i32),
+        radius,
+        color,
+    );
+}

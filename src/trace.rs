@@ -1,0 +1,246 @@
+//! The tracing pipeline of `../shared/DESIGN.md`: gray → binarize → clean → thin → strokes →
+//! sample → reconstruct (the crawl) → fit → [`Drawing`]; every stage is a module of its own.
+
+use std::time::{Duration, Instant};
+
+use image::{DynamicImage, GrayImage};
+use kurbo::Point;
+
+use crate::binarize::{binarize, BinarizeOptions, MethodUsed};
+use crate::bitmap::Bitmap;
+use crate::clean::{clean, estimate_stroke_width, CleanReport};
+use crate::decode::to_gray;
+use crate::fit::{fit_curve, FitOptions};
+use crate::sample::{default_spacing, sample_polyline, simplification_tolerance};
+use crate::sketch::{connect, Method, SampledStroke, TracedCurve};
+use crate::strokes::{extract_strokes, StrokeEnd};
+use crate::svg::{CurvePath, Drawing};
+use crate::thin::thin;
+
+/// What to do differently from the defaults. `TraceOptions::default()` needs no tuning.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TraceOptions {
+    /// Thresholding: automatic by default (Otsu, or adaptive on uneven pages).
+    pub binarize: BinarizeOptions,
+    /// Sample spacing along strokes in pixels; by default 1.5 pen widths.
+    pub spacing: Option<f64>,
+    /// Smooth cubic Béziers (default) or straight segments.
+    pub smooth: bool,
+    /// The largest deviation of the output path from the reconstructed polyline, in pixels; by
+    /// default a quarter of the pen width (at least 0.5 px).
+    pub simplify: Option<f64>,
+    /// Stroke width of the SVG paths; by default the measured pen width.
+    pub stroke_width: Option<f64>,
+    /// Stroke colour of the SVG paths.
+    pub color: String,
+    /// How samples are connected into curves.
+    pub method: Method,
+    /// Keep the intermediate images and geometry in [`Traced::stages`] (for `--debug`).
+    pub keep_stages: bool,
+}
+
+impl Default for TraceOptions {
+    fn default() -> Self {
+        Self {
+            binarize: BinarizeOptions::default(),
+            spacing: None,
+            smooth: true,
+            simplify: None,
+            stroke_width: None,
+            color: "#000000".to_string(),
+            method: Method::default(),
+            keep_stages: false,
+        }
+    }
+}
+
+/// Why an image could not be traced.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum TraceError {
+    /// Thresholding found no ink: a blank page, or light ink without `--invert`.
+    #[error("no drawing found: the image has no ink after thresholding (blank page? light ink on dark paper needs --invert)")]
+    NoInk,
+}
+
+/// How long each stage took and what it measured.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct TraceReport {
+    /// The thresholding method that was applied.
+    pub threshold: Option<MethodUsed>,
+    /// The measured pen width in pixels.
+    pub stroke_width: f64,
+    /// The sample spacing used, in pixels.
+    pub spacing: f64,
+    /// What cleaning removed.
+    pub cleaned: CleanReport,
+    /// Number of pen strokes found in the skeleton.
+    pub strokes: usize,
+    /// Number of sample points.
+    pub samples: usize,
+    /// Wall time of each stage, in pipeline order.
+    pub timings: Vec<(&'static str, Duration)>,
+}
+
+/// The intermediate results, kept when [`TraceOptions::keep_stages`] is set.
+#[derive(Clone, Debug)]
+pub struct Stages {
+    /// The gray image the pipeline started from.
+    pub gray: GrayImage,
+    /// Ink after thresholding and cleaning.
+    pub mask: Bitmap,
+    /// The 1-px skeleton.
+    pub skeleton: Bitmap,
+    /// The sampled strokes.
+    pub strokes: Vec<SampledStroke>,
+    /// The reconstructed polylines before fitting.
+    pub curves: Vec<TracedCurve>,
+}
+
+/// The result of tracing an image.
+#[derive(Clone, Debug)]
+pub struct Traced {
+    /// The vector drawing, ready for [`crate::svg::to_svg`].
+    pub drawing: Drawing,
+    /// What the stages measured and how long they took.
+    pub report: TraceReport,
+    /// Intermediate results, if asked for.
+    pub stages: Option<Stages>,
+}
+
+/// Traces a line drawing into one vector path per drawn shape.
+pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, TraceError> {
+    let mut report = TraceReport::default();
+    let mut clock = Instant::now();
+    let mut lap = |report: &mut TraceReport, stage: &'static str| {
+        let now = Instant::now();
+        report.timings.push((stage, now - clock));
+        clock = now;
+    };
+
+    let gray = to_gray(image);
+    lap(&mut report, "gray");
+    let binarized = binarize(&gray, &options.binarize);
+    report.threshold = Some(binarized.method_used);
+    let mut mask = binarized.mask;
+    lap(&mut report, "binarize");
+    let stroke_width = estimate_stroke_width(&mask);
+    if stroke_width <= 0.0 {
+        return Err(TraceError::NoInk);
+    }
+    report.cleaned = clean(&mut mask, stroke_width);
+    report.stroke_width = stroke_width;
+    lap(&mut report, "clean");
+    if mask.count_ink() == 0 {
+        return Err(TraceError::NoInk);
+    }
+    let skeleton = thin(&mask);
+    lap(&mut report, "thin");
+
+    let strokes = extract_strokes(&skeleton, stroke_width);
+    report.strokes = strokes.len();
+    let spacing = options
+        .spacing
+        .filter(|s| s.is_finite() && *s > 0.0)
+        .unwrap_or_else(|| default_spacing(stroke_width));
+    report.spacing = spacing;
+    let tolerance = simplification_tolerance(stroke_width);
+    let sampled: Vec<SampledStroke> = strokes
+        .iter()
+        .map(|stroke| {
+            // DECISION: a free-ended dash no longer than two sample spacings is a dot: one sample
+            // that may be bridged on both sides. Sampled as a two-point stroke, its two ends
+            // sit so close together that the gap matching can hand both neighbours to the same
+            // end and leave the shape open.
+            let length = loop_length(&stroke.points, false);
+            let free = stroke.ends == [StrokeEnd::Free, StrokeEnd::Free];
+            if !stroke.closed && free && length <= 2.0 * spacing {
+                let middle = stroke.points[0].midpoint(stroke.points[stroke.points.len() - 1]);
+                return SampledStroke {
+                    points: vec![middle],
+                    closed: false,
+                    ends: stroke.ends,
+                };
+            }
+            // A loop needs at least four samples to be closable (the paper's "more than two
+            // edges"); small loops are sampled more densely.
+            let perimeter = loop_length(&stroke.points, stroke.closed);
+            let stroke_spacing = if stroke.closed {
+                spacing.min(perimeter / 4.0)
+            } else {
+                spacing
+            };
+            SampledStroke {
+                points: sample_polyline(&stroke.points, stroke.closed, stroke_spacing, tolerance),
+                closed: stroke.closed,
+                ends: stroke.ends,
+            }
+        })
+        .collect();
+    report.samples = sampled.iter().map(|s| s.points.len()).sum();
+    lap(&mut report, "strokes+sample");
+
+    // DECISION: a curve shorter than two pen widths is a stray mark (a speck that survived
+    // cleaning, a blot), not a shape.
+    let curves = connect(&sampled, options.method, spacing, 2.0 * stroke_width);
+    lap(&mut report, "reconstruct");
+
+    let fit_options = FitOptions {
+        smooth: options.smooth,
+        tolerance: options
+            .simplify
+            .filter(|t| t.is_finite() && *t >= 0.0)
+            .unwrap_or_else(|| (0.25 * stroke_width).max(0.5)),
+    };
+    let mut paths: Vec<CurvePath> = curves
+        .iter()
+        .map(|curve| CurvePath {
+            path: fit_curve(&curve.points, curve.closed, &fit_options),
+            closed: curve.closed,
+        })
+        .collect();
+    // Stable order for the SVG: by the path's first point, top to bottom, then left to right.
+    paths.sort_by(|a, b| {
+        let key = |p: &CurvePath| {
+            p.path
+                .elements()
+                .first()
+                .and_then(|e| e.end_point())
+                .unwrap_or(Point::ZERO)
+        };
+        let (ka, kb) = (key(a), key(b));
+        ka.y.total_cmp(&kb.y).then(ka.x.total_cmp(&kb.x))
+    });
+    lap(&mut report, "fit");
+
+    let drawing = Drawing {
+        width: f64::from(gray.width()),
+        height: f64::from(gray.height()),
+        paths,
+        stroke_width: options
+            .stroke_width
+            .filter(|w| w.is_finite() && *w > 0.0)
+            .unwrap_or(stroke_width),
+        color: options.color.clone(),
+        dots: Vec::new(),
+    };
+    let stages = options.keep_stages.then_some(Stages {
+        gray,
+        mask,
+        skeleton,
+        strokes: sampled,
+        curves,
+    });
+    Ok(Traced {
+        drawing,
+        report,
+        stages,
+    })
+}
+
+fn loop_length(points: &[Point], closed: bool) -> f64 {
+    let open: f64 = points.windows(2).map(|w| w[0].distance(w[1])).sum();
+    match (closed, points.first(), points.last()) {
+        (true, Some(&a), Some(&b)) => open + a.distance(b),
+        _ => open,
+    }
+}

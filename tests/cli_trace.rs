@@ -1,0 +1,309 @@
+//! Runs the `crawltrace` binary on images made in the test (skip-stroke drawings rendered from
+//! dashed SVG strokes) in a temporary folder: formats, outputs, errors, determinism, `--debug`,
+//! `render`.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use image::{DynamicImage, GrayImage, ImageFormat, Luma};
+
+const BINARY: &str = env!("CARGO_BIN_EXE_crawltrace");
+
+fn run(args: &[&str], folder: &Path) -> Output {
+    let output = Command::new(BINARY)
+        .args(args)
+        .current_dir(folder)
+        .output()
+        .expect("the binary runs");
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        !stderr.contains("panicked") && !stderr.contains("RUST_BACKTRACE"),
+        "crawltrace {args:?} panicked:\n{stderr}"
+    );
+    output
+}
+
+fn describe(args: &[&str], output: &Output) -> String {
+    format!(
+        "crawltrace {}\nexit: {:?}\nstderr:\n{}",
+        args.join(" "),
+        output.status.code(),
+        String::from_utf8_lossy(&output.stderr)
+    )
+}
+
+/// A skip-stroke sketch: a dashed circle (closed) and a dashed wave (open), as a gray image.
+fn sketch(width: u32, height: u32) -> GrayImage {
+    let svg = format!(
+        r##"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}">
+        <rect width="100%" height="100%" fill="white"/>
+        <g fill="none" stroke="black" stroke-width="3" stroke-linecap="round" stroke-dasharray="22 7">
+          <circle cx="70" cy="70" r="45"/>
+          <path d="M20 160 C60 130 100 190 140 160 S 200 130 220 160"/>
+        </g></svg>"##
+    );
+    let rgba = crawltrace::render::render_svg(&svg, 1.0).expect("test SVG renders");
+    DynamicImage::ImageRgba8(rgba).to_luma8()
+}
+
+fn write_image(folder: &Path, name: &str, image: DynamicImage, format: ImageFormat) -> PathBuf {
+    let path = folder.join(name);
+    image
+        .save_with_format(&path, format)
+        .expect("test image saves");
+    path
+}
+
+fn path_count(svg: &str) -> (usize, usize) {
+    let paths = svg.matches("<path ").count();
+    let closed = svg
+        .lines()
+        .filter(|l| l.starts_with("<path") && l.contains('Z'))
+        .count();
+    (paths, closed)
+}
+
+#[test]
+fn traces_a_png_beside_the_input_with_one_path_per_shape() {
+    let folder = tempfile::tempdir().unwrap();
+    write_image(
+        folder.path(),
+        "sketch.png",
+        sketch(240, 200).into(),
+        ImageFormat::Png,
+    );
+    let args = ["trace", "sketch.png"];
+    let output = run(&args, folder.path());
+    assert!(output.status.success(), "{}", describe(&args, &output));
+    let svg =
+        std::fs::read_to_string(folder.path().join("sketch.svg")).expect("sketch.svg written");
+    assert!(svg.contains(r#"viewBox="0 0 240 200""#), "{svg}");
+    assert_eq!(path_count(&svg), (2, 1), "{svg}");
+    usvg::Tree::from_str(&svg, &usvg::Options::default()).expect("valid SVG");
+}
+
+#[test]
+fn every_common_format_and_pixel_type_traces_the_same_shapes() {
+    let folder = tempfile::tempdir().unwrap();
+    let gray = sketch(240, 200);
+    let rgb = DynamicImage::ImageLuma8(gray.clone()).to_rgb8();
+    let sixteen_bit = DynamicImage::ImageLuma16(DynamicImage::ImageLuma8(gray.clone()).to_luma16());
+    // Gray ink on a transparent background: alpha must be composited over white.
+    let with_alpha = image::GrayAlphaImage::from_fn(240, 200, |x, y| {
+        let ink = 255 - gray.get_pixel(x, y).0[0];
+        image::LumaA([0, ink])
+    });
+    let cases: Vec<(&str, DynamicImage, ImageFormat)> = vec![
+        ("a.png", rgb.clone().into(), ImageFormat::Png),
+        ("b.jpg", rgb.clone().into(), ImageFormat::Jpeg),
+        ("c.gif", rgb.clone().into(), ImageFormat::Gif),
+        ("d.bmp", rgb.clone().into(), ImageFormat::Bmp),
+        ("e.tiff", rgb.clone().into(), ImageFormat::Tiff),
+        (
+            "f.webp",
+            DynamicImage::ImageRgb8(rgb.clone()).to_rgba8().into(),
+            ImageFormat::WebP,
+        ),
+        ("g.pgm", gray.clone().into(), ImageFormat::Pnm),
+        ("h16.png", sixteen_bit, ImageFormat::Png),
+        ("i-alpha.png", with_alpha.into(), ImageFormat::Png),
+    ];
+    for (name, picture, format) in cases {
+        write_image(folder.path(), name, picture, format);
+        let args = ["trace", name, "-o", "-"];
+        let output = run(&args, folder.path());
+        assert!(output.status.success(), "{}", describe(&args, &output));
+        let svg = String::from_utf8(output.stdout).unwrap();
+        assert_eq!(path_count(&svg), (2, 1), "{name}:\n{svg}");
+    }
+}
+
+#[test]
+fn output_is_byte_identical_across_runs() {
+    let folder = tempfile::tempdir().unwrap();
+    write_image(
+        folder.path(),
+        "s.png",
+        sketch(240, 200).into(),
+        ImageFormat::Png,
+    );
+    let first = run(&["trace", "s.png", "-o", "-"], folder.path()).stdout;
+    let second = run(&["trace", "s.png", "-o", "-"], folder.path()).stdout;
+    assert!(!first.is_empty());
+    assert_eq!(first, second);
+}
+
+#[test]
+fn bad_inputs_are_one_line_errors_with_exit_code_2() {
+    let folder = tempfile::tempdir().unwrap();
+    std::fs::write(
+        folder.path().join("notes.png"),
+        "this is text, not a picture",
+    )
+    .unwrap();
+    let mut png = Vec::new();
+    DynamicImage::ImageLuma8(sketch(240, 200))
+        .write_to(&mut std::io::Cursor::new(&mut png), ImageFormat::Png)
+        .unwrap();
+    std::fs::write(folder.path().join("truncated.png"), &png[..png.len() / 2]).unwrap();
+    std::fs::write(folder.path().join("empty.png"), b"").unwrap();
+    write_image(
+        folder.path(),
+        "blank.png",
+        GrayImage::from_pixel(100, 80, Luma([255])).into(),
+        ImageFormat::Png,
+    );
+    for (name, expected) in [
+        ("notes.png", "notes.png"),
+        ("truncated.png", "truncated.png"),
+        ("empty.png", "empty.png"),
+        ("blank.png", "no drawing found"),
+        ("missing.png", "no such file"),
+    ] {
+        let args = ["trace", name];
+        let output = run(&args, folder.path());
+        assert_eq!(
+            output.status.code(),
+            Some(2),
+            "{}",
+            describe(&args, &output)
+        );
+        let stderr = String::from_utf8(output.stderr).unwrap();
+        assert_eq!(stderr.lines().count(), 1, "{}", stderr);
+        assert!(stderr.starts_with(&format!("error: {name}: ")), "{stderr}");
+        assert!(stderr.contains(expected), "{stderr}");
+        let svg_path = folder.path().join(name).with_extension("svg");
+        assert!(!svg_path.exists(), "no output for a failed input");
+    }
+}
+
+#[test]
+fn never_overwrites_the_input() {
+    let folder = tempfile::tempdir().unwrap();
+    let input = write_image(
+        folder.path(),
+        "s.png",
+        sketch(240, 200).into(),
+        ImageFormat::Png,
+    );
+    let before = std::fs::read(&input).unwrap();
+    let args = ["trace", "s.png", "-o", "s.png"];
+    let output = run(&args, folder.path());
+    assert_eq!(
+        output.status.code(),
+        Some(2),
+        "{}",
+        describe(&args, &output)
+    );
+    assert_eq!(std::fs::read(&input).unwrap(), before);
+}
+
+#[test]
+fn light_ink_on_dark_paper_needs_invert() {
+    let folder = tempfile::tempdir().unwrap();
+    let mut negative = sketch(240, 200);
+    image::imageops::invert(&mut negative);
+    write_image(folder.path(), "neg.png", negative.into(), ImageFormat::Png);
+    let args = ["trace", "neg.png", "--invert", "-o", "-"];
+    let output = run(&args, folder.path());
+    assert!(output.status.success(), "{}", describe(&args, &output));
+    assert_eq!(
+        path_count(&String::from_utf8(output.stdout).unwrap()),
+        (2, 1)
+    );
+}
+
+#[test]
+fn options_change_the_output_as_documented() {
+    let folder = tempfile::tempdir().unwrap();
+    write_image(
+        folder.path(),
+        "s.png",
+        sketch(240, 200).into(),
+        ImageFormat::Png,
+    );
+    let polyline = run(&["trace", "s.png", "--no-smooth", "-o", "-"], folder.path());
+    let polyline = String::from_utf8(polyline.stdout).unwrap();
+    assert!(
+        polyline.contains(" L") && !polyline.contains(" C"),
+        "{polyline}"
+    );
+    let smooth =
+        String::from_utf8(run(&["trace", "s.png", "-o", "-"], folder.path()).stdout).unwrap();
+    assert!(smooth.contains(" C"), "{smooth}");
+    let styled = run(
+        &[
+            "trace",
+            "s.png",
+            "--stroke-width",
+            "5",
+            "--color",
+            "#ff0000",
+            "-o",
+            "-",
+        ],
+        folder.path(),
+    );
+    let styled = String::from_utf8(styled.stdout).unwrap();
+    assert!(
+        styled.contains(r##"stroke="#ff0000" stroke-width="5""##),
+        "{styled}"
+    );
+    let args = ["trace", "s.png", "--spacing", "-3"];
+    let output = run(&args, folder.path());
+    assert_eq!(
+        output.status.code(),
+        Some(2),
+        "{}",
+        describe(&args, &output)
+    );
+}
+
+#[test]
+fn debug_writes_a_picture_of_every_stage() {
+    let folder = tempfile::tempdir().unwrap();
+    write_image(
+        folder.path(),
+        "s.png",
+        sketch(240, 200).into(),
+        ImageFormat::Png,
+    );
+    let args = ["trace", "s.png", "--debug", "stages", "-q"];
+    let output = run(&args, folder.path());
+    assert!(output.status.success(), "{}", describe(&args, &output));
+    for name in [
+        "1-mask",
+        "2-skeleton",
+        "3-samples",
+        "4-delaunay",
+        "5-result",
+    ] {
+        let picture = image::open(folder.path().join("stages").join(format!("{name}.png")))
+            .unwrap_or_else(|e| panic!("{name}.png: {e}"));
+        assert_eq!((picture.width(), picture.height()), (240, 200));
+    }
+}
+
+#[test]
+fn render_rasterizes_the_traced_svg() {
+    let folder = tempfile::tempdir().unwrap();
+    write_image(
+        folder.path(),
+        "s.png",
+        sketch(240, 200).into(),
+        ImageFormat::Png,
+    );
+    assert!(run(&["trace", "s.png"], folder.path()).status.success());
+    let args = ["render", "s.svg", "-o", "s-preview.png", "--scale", "2"];
+    let output = run(&args, folder.path());
+    assert!(output.status.success(), "{}", describe(&args, &output));
+    let preview = image::open(folder.path().join("s-preview.png"))
+        .unwrap()
+        .to_luma8();
+    assert_eq!(preview.dimensions(), (480, 400));
+    let dark = preview.pixels().filter(|p| p.0[0] < 128).count();
+    assert!(
+        dark > 1000,
+        "the preview shows the curves ({dark} dark pixels)"
+    );
+}
