@@ -14,7 +14,7 @@ use std::collections::HashMap;
 
 use kurbo::Point;
 
-use crate::reconstruct::{self, crawl, squared_distance, ChainEnds, NeighbourGraph};
+use crate::reconstruct::{self, crawl, ChainEnds, NeighbourGraph};
 use crate::strokes::StrokeEnd;
 
 /// A stroke after sampling: what [`connect_strokes`] works on.
@@ -107,10 +107,28 @@ pub fn connect_strokes(strokes: &[SampledStroke], spacing: f64) -> Vec<TracedCur
     let mut positions: Vec<Point> = Vec::new();
     let mut vertex_at: HashMap<(u64, u64), u32> = HashMap::new();
     let mut stroke_vertices: Vec<Vec<u32>> = Vec::with_capacity(strokes.len());
-    let mut stroke_of_vertex: Vec<usize> = Vec::new();
-    for (s, stroke) in strokes.iter().enumerate() {
-        let mut vertices = Vec::with_capacity(stroke.points.len());
-        for &p in &stroke.points {
+    // DECISION: a free-ended dash no longer than two sample spacings is a dot: one vertex at its
+    // middle that may be bridged on both sides, with gaps measured from its rim. Sampled as a
+    // stroke, its two ends sit so close together that the gap matching can hand both neighbours
+    // to the same end and leave the shape open.
+    let mut radius_of_vertex: HashMap<u32, f64> = HashMap::new();
+    // The dash each dot stands for, to draw it back in the output.
+    let mut dash_of_vertex: HashMap<u32, (Point, Point)> = HashMap::new();
+    let dot_of = |stroke: &SampledStroke| -> Option<(Point, f64)> {
+        let (first, last) = (*stroke.points.first()?, *stroke.points.last()?);
+        let length: f64 = stroke.points.windows(2).map(|w| w[0].distance(w[1])).sum();
+        let free = stroke.ends == [StrokeEnd::Free, StrokeEnd::Free];
+        (!stroke.closed && free && length <= 2.0 * spacing)
+            .then(|| (first.midpoint(last), 0.5 * length))
+    };
+    for stroke in strokes {
+        let dot = dot_of(stroke);
+        let points = match dot {
+            Some((middle, _)) => vec![middle],
+            None => stroke.points.clone(),
+        };
+        let mut vertices = Vec::with_capacity(points.len());
+        for p in points {
             let key = (p.x.to_bits(), p.y.to_bits());
             if vertex_at.contains_key(&key) {
                 continue;
@@ -118,8 +136,13 @@ pub fn connect_strokes(strokes: &[SampledStroke], spacing: f64) -> Vec<TracedCur
             let v = positions.len() as u32;
             vertex_at.insert(key, v);
             positions.push(p);
-            stroke_of_vertex.push(s);
             vertices.push(v);
+            if let Some((_, radius)) = dot {
+                radius_of_vertex.insert(v, radius);
+                if let (Some(&first), Some(&last)) = (stroke.points.first(), stroke.points.last()) {
+                    dash_of_vertex.insert(v, (first, last));
+                }
+            }
         }
         stroke_vertices.push(vertices);
     }
@@ -154,6 +177,7 @@ pub fn connect_strokes(strokes: &[SampledStroke], spacing: f64) -> Vec<TracedCur
         &delaunay,
         &free_ends,
         &stroke_vertices,
+        &radius_of_vertex,
         spacing,
     ));
     let graph = NeighbourGraph::from_edges(&positions, edges);
@@ -169,7 +193,30 @@ pub fn connect_strokes(strokes: &[SampledStroke], spacing: f64) -> Vec<TracedCur
         .filter(|chain| chain.vertices.len() >= 2)
         .map(|chain| {
             let vertices = reconstruct::canonical_orientation(chain.vertices, chain.closed);
-            let mut points: Vec<Point> = vertices.iter().map(|&v| positions[v as usize]).collect();
+            let mut points = Vec::with_capacity(vertices.len() + 2);
+            for (k, &v) in vertices.iter().enumerate() {
+                let Some(&(a, b)) = dash_of_vertex.get(&v) else {
+                    points.push(positions[v as usize]);
+                    continue;
+                };
+                // Draw the dash with the end nearer to the curve before it first (or, at the
+                // start, the end farther from the curve after it).
+                let (before, after) = neighbours_along(&vertices, k, chain.closed);
+                let a_first = match (before, after) {
+                    (Some(p), _) => {
+                        positions[p as usize].distance(a) <= positions[p as usize].distance(b)
+                    }
+                    (None, Some(n)) => {
+                        positions[n as usize].distance(a) >= positions[n as usize].distance(b)
+                    }
+                    (None, None) => true,
+                };
+                let (first, second) = if a_first { (a, b) } else { (b, a) };
+                points.push(first);
+                if second != first {
+                    points.push(second);
+                }
+            }
             if !chain.closed {
                 if let Some(&p) = attachment.get(&vertices[0]) {
                     points.insert(0, p);
@@ -184,6 +231,26 @@ pub fn connect_strokes(strokes: &[SampledStroke], spacing: f64) -> Vec<TracedCur
             }
         })
         .collect()
+}
+
+/// The vertices before and after position `k` of a chain.
+fn neighbours_along(vertices: &[u32], k: usize, closed: bool) -> (Option<u32>, Option<u32>) {
+    let n = vertices.len();
+    let before = if k > 0 {
+        Some(vertices[k - 1])
+    } else if closed && n > 1 {
+        Some(vertices[n - 1])
+    } else {
+        None
+    };
+    let after = if k + 1 < n {
+        Some(vertices[k + 1])
+    } else if closed && n > 1 {
+        Some(vertices[0])
+    } else {
+        None
+    };
+    (before, after)
 }
 
 /// Chooses the bridges across pen lifts: pairs of free stroke ends joined by a Delaunay edge,
@@ -203,6 +270,7 @@ fn match_gap_bridges(
     delaunay: &NeighbourGraph,
     free_ends: &[FreeEnd],
     stroke_vertices: &[Vec<u32>],
+    radius_of_vertex: &HashMap<u32, f64>,
     spacing: f64,
 ) -> Vec<(u32, u32)> {
     // How many bridges each vertex may take: one per free end it is (two for a one-sample dot).
@@ -225,8 +293,12 @@ fn match_gap_bridges(
             if other_stroke == end.stroke && stroke_vertices[end.stroke].len() < 4 {
                 continue;
             }
-            let length =
-                squared_distance(positions[end.vertex as usize], positions[other as usize]);
+            // Gaps are measured between rims: a dot has the size of the dash it stands for.
+            let rims = radius_of_vertex.get(&end.vertex).unwrap_or(&0.0)
+                + radius_of_vertex.get(&other).unwrap_or(&0.0);
+            let length = (positions[end.vertex as usize].distance(positions[other as usize])
+                - rims)
+                .max(0.0);
             candidates.push((length, end.vertex, other));
         }
     }
@@ -243,12 +315,11 @@ fn match_gap_bridges(
     let mut groups = StrokeGroups::new(stroke_vertices.len(), stroke_length);
     let mut matched: Vec<(f64, u32, u32)> = Vec::new();
     let mut remaining = slots;
-    for (squared_length, a, b) in candidates {
+    for (length, a, b) in candidates {
         if remaining[&a] == 0 || remaining[&b] == 0 || matched.iter().any(|m| (m.1, m.2) == (a, b))
         {
             continue;
         }
-        let length = squared_length.sqrt();
         let (stroke_a, stroke_b) = (stroke_of[&a], stroke_of[&b]);
         // DECISION: a bridge that closes a loop must be short next to the loop: at most a quarter
         // of its length. A skip-stroke gap is a small part of the outline it interrupts; an

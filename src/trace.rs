@@ -13,7 +13,7 @@ use crate::decode::to_gray;
 use crate::fit::{fit_curve, FitOptions};
 use crate::sample::{default_spacing, sample_polyline, simplification_tolerance};
 use crate::sketch::{connect, Method, SampledStroke, TracedCurve};
-use crate::strokes::{extract_strokes, StrokeEnd};
+use crate::strokes::extract_strokes;
 use crate::svg::{CurvePath, Drawing};
 use crate::thin::thin;
 
@@ -147,20 +147,6 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
     let sampled: Vec<SampledStroke> = strokes
         .iter()
         .map(|stroke| {
-            // DECISION: a free-ended dash no longer than two sample spacings is a dot: one sample
-            // that may be bridged on both sides. Sampled as a two-point stroke, its two ends
-            // sit so close together that the gap matching can hand both neighbours to the same
-            // end and leave the shape open.
-            let length = loop_length(&stroke.points, false);
-            let free = stroke.ends == [StrokeEnd::Free, StrokeEnd::Free];
-            if !stroke.closed && free && length <= 2.0 * spacing {
-                let middle = stroke.points[0].midpoint(stroke.points[stroke.points.len() - 1]);
-                return SampledStroke {
-                    points: vec![middle],
-                    closed: false,
-                    ends: stroke.ends,
-                };
-            }
             // A loop needs at least four samples to be closable (the paper's "more than two
             // edges"); small loops are sampled more densely.
             let perimeter = loop_length(&stroke.points, stroke.closed);
