@@ -148,10 +148,15 @@ fn main() {
     }
     let mut cleaned = MASK.clone();
     let report = clean(&mut cleaned, *STROKE_WIDTH);
+    let skeleton = thin(&CLEANED);
+    let end_points = (0..skeleton.height())
+        .flat_map(|y| (0..skeleton.width()).map(move |x| (x, y)))
+        .filter(|&(x, y)| skeleton.get(x, y) && skeleton.neighbourhood(x, y).count_ones() == 1)
+        .count();
     eprintln!(
-        "stroke width {} px; {report:?}; skeleton {} pixels",
+        "stroke width {} px; {report:?}; skeleton {} pixels, {end_points} end points",
         *STROKE_WIDTH,
-        thin(&CLEANED).count_ink()
+        skeleton.count_ink()
     );
     divan::main();
 }
