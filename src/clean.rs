@@ -96,11 +96,10 @@ pub fn estimate_stroke_width(mask: &Bitmap) -> f64 {
 /// Removes specks and fills pinholes, in place, with limits derived from `stroke_width` (as
 /// measured by [`estimate_stroke_width`]; a non-finite or negative width counts as 0):
 ///
-/// - ink components (8-connected) smaller than [`SPECK_DISK_FRACTION`] of a stroke-wide disk
-///   are erased;
+/// - ink components (8-connected) smaller than half the area of a disk one stroke width across
+///   (π·w²/8; at least 2 px, so lone pixels always go) are erased;
 /// - then background components (4-connected, the complement of 8-connected ink) that do not
-///   touch the image border and are smaller than [`PINHOLE_DISK_FRACTION`] of that disk are
-///   filled.
+///   touch the image border and are smaller than the same area are filled.
 ///
 /// Specks go first so that a speck inside a hole does not split it into smaller "holes".
 pub fn clean(mask: &mut Bitmap, stroke_width: f64) -> CleanReport {

@@ -7,6 +7,9 @@
 //!
 //! Point sets: [`reconstruct::reconstruct`] takes points and returns curves as chains of input
 //! indices, each open or closed, plus the outliers.
+//!
+//! Images, stage by stage: [`decode::decode_image`] and [`decode::to_gray`] → [`binarize::binarize`]
+//! → [`clean::estimate_stroke_width`] and [`clean::clean`] → [`thin::thin`], a 1-px skeleton.
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
