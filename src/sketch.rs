@@ -49,21 +49,53 @@ pub enum Method {
 }
 
 /// Connects sampled strokes into curves with `method`. `spacing` is the sample spacing; curves
-/// shorter than `minimum_length` are dropped as stray marks.
+/// shorter than `minimum_length` are dropped as stray marks; the free ends of open curves are
+/// extended by `end_extension` (thinning erodes every stroke end by half a pen width).
 pub fn connect(
     strokes: &[SampledStroke],
     method: Method,
     spacing: f64,
     minimum_length: f64,
+    end_extension: f64,
 ) -> Vec<TracedCurve> {
     let curves = match method {
         Method::Strokes => connect_strokes(strokes, spacing),
         Method::Points => crawl_all_samples(strokes),
     };
+    let attached: Vec<Point> = strokes
+        .iter()
+        .flat_map(|s| s.ends)
+        .filter_map(|end| match end {
+            StrokeEnd::Attached(p) => Some(p),
+            StrokeEnd::Free => None,
+        })
+        .collect();
     curves
         .into_iter()
         .filter(|curve| curve_length(curve) >= minimum_length)
+        .map(|mut curve| {
+            if !curve.closed && curve.points.len() >= 2 {
+                extend_end(&mut curve.points, false, end_extension, &attached);
+                extend_end(&mut curve.points, true, end_extension, &attached);
+            }
+            curve
+        })
         .collect()
+}
+
+/// Moves the first (or last) point of an open curve `extension` further along the curve's
+/// direction there, unless it is a T-junction attachment point.
+fn extend_end(points: &mut [Point], at_last: bool, extension: f64, attached: &[Point]) {
+    let n = points.len();
+    let (end, inner) = if at_last { (n - 1, n - 2) } else { (0, 1) };
+    if attached.contains(&points[end]) {
+        return;
+    }
+    let direction = points[end] - points[inner];
+    let length = direction.hypot();
+    if length > 0.0 {
+        points[end] += direction * (extension / length);
+    }
 }
 
 fn curve_length(curve: &TracedCurve) -> f64 {
@@ -436,7 +468,7 @@ mod tests {
     fn a_skip_stroke_circle_becomes_one_closed_curve() {
         let strokes = skip_stroke_circle((100.0, 100.0), 60.0, 40.0, 5.0);
         assert_eq!(strokes.len(), 8);
-        let curves = connect(&strokes, Method::Strokes, 4.0, 6.0);
+        let curves = connect(&strokes, Method::Strokes, 4.0, 6.0, 0.0);
         assert_eq!(curves.len(), 1, "{curves:?}");
         assert!(curves[0].closed);
         let total: usize = strokes.iter().map(|s| s.points.len()).sum();
@@ -449,7 +481,7 @@ mod tests {
         // A mouth of two strokes with a small gap, its corners 30 px from the outline's gaps.
         strokes.push(arc((100.0, 90.0), 50.0, 40.0, 88.0, 4.0));
         strokes.push(arc((100.0, 90.0), 50.0, 92.0, 140.0, 4.0));
-        let curves = connect(&strokes, Method::Strokes, 4.0, 6.0);
+        let curves = connect(&strokes, Method::Strokes, 4.0, 6.0, 0.0);
         assert_eq!(curves.len(), 2, "{curves:?}");
         let closed: Vec<bool> = curves.iter().map(|c| c.closed).collect();
         assert!(
@@ -469,7 +501,7 @@ mod tests {
             open(&[(0.0, 0.0), (4.0, 0.0), (8.0, 0.0), (12.0, 0.0), (16.0, 0.0)]),
             open(&[(40.0, 0.0), (44.0, 0.0), (48.0, 0.0), (52.0, 0.0)]),
         ];
-        let curves = connect(&strokes, Method::Strokes, 4.0, 6.0);
+        let curves = connect(&strokes, Method::Strokes, 4.0, 6.0, 0.0);
         assert_eq!(curves.len(), 2, "{curves:?}");
         assert!(curves.iter().all(|c| !c.closed));
     }
@@ -487,7 +519,7 @@ mod tests {
             (16.0, 14.0),
             (20.0, 14.0),
         ]);
-        let curves = connect(&[bar, stem], Method::Strokes, 4.0, 6.0);
+        let curves = connect(&[bar, stem], Method::Strokes, 4.0, 6.0, 0.0);
         assert_eq!(curves.len(), 2, "{curves:?}");
         let stem = curves.iter().find(|c| c.points.len() == 12).expect("stem");
         assert!(stem.points.contains(&Point::new(10.0, 14.0)), "{stem:?}");
@@ -496,13 +528,13 @@ mod tests {
     #[test]
     fn stray_marks_are_dropped() {
         let strokes = vec![open(&[(0.0, 0.0), (2.0, 0.0)])];
-        assert!(connect(&strokes, Method::Strokes, 4.0, 6.0).is_empty());
+        assert!(connect(&strokes, Method::Strokes, 4.0, 6.0, 0.0).is_empty());
     }
 
     #[test]
     fn the_paper_method_also_runs() {
         let strokes = skip_stroke_circle((100.0, 100.0), 60.0, 40.0, 3.0);
-        let curves = connect(&strokes, Method::Points, 4.0, 6.0);
+        let curves = connect(&strokes, Method::Points, 4.0, 6.0, 0.0);
         assert!(!curves.is_empty());
     }
 }

@@ -167,7 +167,13 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
 
     // DECISION: a curve shorter than two pen widths is a stray mark (a speck that survived
     // cleaning, a blot), not a shape.
-    let curves = connect(&sampled, options.method, spacing, 2.0 * stroke_width);
+    let curves = connect(
+        &sampled,
+        options.method,
+        spacing,
+        2.0 * stroke_width,
+        0.5 * stroke_width,
+    );
     lap(&mut report, "reconstruct");
 
     let fit_options = FitOptions {
