@@ -6,7 +6,7 @@
 //! (the paper's §4.3 "T-junctions" limitation); resolving junctions here, where the ink shows
 //! which branches belong together, leaves it only chains to connect.
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 use kurbo::Point;
 
@@ -436,15 +436,17 @@ impl SkeletonGraph {
         } else {
             points[points.len() - 1]
         };
-        let ordered: Box<dyn Iterator<Item = &Point>> = if at_start {
-            Box::new(points.iter())
-        } else {
-            Box::new(points.iter().rev())
+        let along = |k: usize| {
+            if at_start {
+                points[k]
+            } else {
+                points[points.len() - 1 - k]
+            }
         };
         let mut target = origin;
-        for &p in ordered {
-            target = p;
-            if p.distance(origin) >= scale {
+        for k in 0..points.len() {
+            target = along(k);
+            if target.distance(origin) >= scale {
                 break;
             }
         }
@@ -465,7 +467,7 @@ impl SkeletonGraph {
         let mut attached: HashMap<(usize, bool), Point> = HashMap::new();
         // Branch ends whose node position is dropped from the polyline, so that no two strokes
         // share a point (a crossing's second pair and detached branches).
-        let mut skip_node_point: HashMap<(usize, bool), ()> = HashMap::new();
+        let mut skip_node_point: HashSet<(usize, bool)> = HashSet::new();
         for node in &self.nodes {
             let ends: Vec<(usize, bool)> = node
                 .ends
@@ -500,15 +502,15 @@ impl SkeletonGraph {
                 partner.insert(ends[i], ends[j]);
                 partner.insert(ends[j], ends[i]);
                 if !first_pair {
-                    skip_node_point.insert(ends[i], ());
-                    skip_node_point.insert(ends[j], ());
+                    skip_node_point.insert(ends[i]);
+                    skip_node_point.insert(ends[j]);
                 }
                 first_pair = false;
             }
             for (k, &end) in ends.iter().enumerate() {
                 if !used[k] {
                     attached.insert(end, node.position);
-                    skip_node_point.insert(end, ());
+                    skip_node_point.insert(end);
                 }
             }
         }
@@ -606,7 +608,7 @@ impl SkeletonGraph {
         points: &mut Vec<Point>,
         branch: usize,
         from_start: bool,
-        skip_node_point: &HashMap<(usize, bool), ()>,
+        skip_node_point: &HashSet<(usize, bool)>,
     ) {
         let source = &self.branches[branch].points;
         let count = source.len();
@@ -629,7 +631,7 @@ impl SkeletonGraph {
                     None
                 };
                 if let Some(key) = end_key {
-                    if skip_node_point.contains_key(&key) && count > 2 {
+                    if skip_node_point.contains(&key) && count > 2 {
                         continue;
                     }
                 }

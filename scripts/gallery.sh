@@ -1,0 +1,20 @@
+#!/usr/bin/env bash
+# Regenerates the README gallery in docs/gallery/: traces some samples with `crawltrace trace`
+# and rasterizes the results with `crawltrace render`; also reconstructs the sample point set.
+# Usage: scripts/gallery.sh   (from anywhere; builds the release binary first)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+cargo build --release --quiet
+crawltrace=target/release/crawltrace
+out=docs/gallery
+mkdir -p "$out"
+for name in face-scan letters-clean squares-triangles-thick spiral-waves-thin silhouettes-scan weather-alpha; do
+  input=$(ls samples/"$name".png samples/"$name".jpg 2>/dev/null | head -n 1)
+  "$crawltrace" trace "$input" -o "$out/$name.svg" --quiet
+  "$crawltrace" render "$out/$name.svg" -o "$out/$name-traced.png"
+done
+if [ -f samples/points/shapes.txt ]; then
+  "$crawltrace" points samples/points/shapes.txt -o "$out/points.svg" --show-points
+  "$crawltrace" render "$out/points.svg" -o "$out/points-reconstructed.png" --scale 0.5
+fi
+echo "gallery written to $out/"
