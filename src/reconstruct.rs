@@ -106,11 +106,7 @@ pub fn reconstruct(points: &[Point]) -> Result<Reconstruction, ReconstructError>
 /// second-nearest neighbour. On evenly spaced samples the chain neighbour and the other extremity
 /// are often exactly equally far; breaking that tie by coordinates would leave perfectly sampled
 /// circles open. A *nearest* extremity qualifies too.
-pub fn paper_closable(
-    positions: &[Point],
-    graph: &NeighbourGraph,
-    chain: &ChainEnds,
-) -> bool {
+pub fn paper_closable(positions: &[Point], graph: &NeighbourGraph, chain: &ChainEnds) -> bool {
     if chain.edge_count <= 2 || !graph.has_edge(chain.front, chain.back) {
         return false;
     }
