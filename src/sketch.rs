@@ -130,6 +130,8 @@ fn crawl_all_samples(strokes: &[SampledStroke]) -> Vec<TracedCurve> {
 struct FreeEnd {
     vertex: u32,
     stroke: usize,
+    /// The unit direction in which the pen was moving when it lifted here; `None` for a dot.
+    outward: Option<kurbo::Vec2>,
 }
 
 /// The crawl on stroke edges and bridges (see the module documentation).
@@ -195,9 +197,18 @@ pub fn connect_strokes(strokes: &[SampledStroke], spacing: f64) -> Vec<TracedCur
         let (Some(&first), Some(&last)) = (vertices.first(), vertices.last()) else {
             continue;
         };
-        for (end, vertex) in stroke.ends.iter().zip([first, last]) {
+        let n = vertices.len();
+        // Measured two samples in, where one is there: the last sample alone wobbles.
+        let inner = [vertices[(n - 1).min(2)], vertices[n.saturating_sub(3)]];
+        for ((end, vertex), inner) in stroke.ends.iter().zip([first, last]).zip(inner) {
+            let direction = positions[vertex as usize] - positions[inner as usize];
+            let outward = (direction.hypot() > 0.0).then(|| direction / direction.hypot());
             match *end {
-                StrokeEnd::Free => free_ends.push(FreeEnd { vertex, stroke: s }),
+                StrokeEnd::Free => free_ends.push(FreeEnd {
+                    vertex,
+                    stroke: s,
+                    outward,
+                }),
                 StrokeEnd::Attached(point) => {
                     attachment.insert(vertex, point);
                 }
@@ -311,7 +322,19 @@ fn match_gap_bridges(
         *slots.entry(end.vertex).or_default() += 1;
     }
     let stroke_of: HashMap<u32, usize> = free_ends.iter().map(|e| (e.vertex, e.stroke)).collect();
-    let mut candidates: Vec<(f64, u32, u32)> = Vec::new();
+    let outward_of: HashMap<u32, Option<kurbo::Vec2>> =
+        free_ends.iter().map(|e| (e.vertex, e.outward)).collect();
+    // How much a bridge from `vertex` towards `direction` turns away from where the pen was
+    // going: 0 straight on, 1 straight back; nothing for a dot.
+    let turn = |vertex: u32, direction: kurbo::Vec2| -> f64 {
+        outward_of
+            .get(&vertex)
+            .copied()
+            .flatten()
+            .map_or(0.0, |outward| (1.0 - outward.dot(direction)) / 2.0)
+    };
+    // (cost, length, end, other end)
+    let mut candidates: Vec<(f64, f64, u32, u32)> = Vec::new();
     for end in free_ends {
         for &other in delaunay.neighbours(end.vertex) {
             let Some(&other_stroke) = stroke_of.get(&other) else {
@@ -331,10 +354,25 @@ fn match_gap_bridges(
             let length = (positions[end.vertex as usize].distance(positions[other as usize])
                 - rims)
                 .max(0.0);
-            candidates.push((length, end.vertex, other));
+            // DECISION: good continuation. A bridge is matched by its length times
+            // 1 + (turn at each end), the turn going from 0 (straight on) to 1 (straight back):
+            // at an acute tip the two arm ends are closer to each other than to the dash at the
+            // tip, but reaching each other means turning round; the tip continues both.
+            let direction = positions[other as usize] - positions[end.vertex as usize];
+            let unit = if direction.hypot() > 0.0 {
+                direction / direction.hypot()
+            } else {
+                kurbo::Vec2::ZERO
+            };
+            let cost = length * (1.0 + turn(end.vertex, unit) + turn(other, -unit));
+            candidates.push((cost, length, end.vertex, other));
         }
     }
-    candidates.sort_by(|a, b| a.0.total_cmp(&b.0).then((a.1, a.2).cmp(&(b.1, b.2))));
+    candidates.sort_by(|a, b| {
+        a.0.total_cmp(&b.0)
+            .then(a.1.total_cmp(&b.1))
+            .then((a.2, a.3).cmp(&(b.2, b.3)))
+    });
     candidates.dedup();
     // Strokes joined by accepted bridges, with their total length, to see when a bridge would
     // close a loop.
@@ -344,36 +382,44 @@ fn match_gap_bridges(
             .map(|w| positions[w[0] as usize].distance(positions[w[1] as usize]))
             .sum()
     };
-    let mut groups = StrokeGroups::new(stroke_vertices.len(), stroke_length);
-    let mut matched: Vec<(f64, u32, u32)> = Vec::new();
-    let mut remaining = slots;
-    for (length, a, b) in candidates {
-        if remaining[&a] == 0 || remaining[&b] == 0 || matched.iter().any(|m| (m.1, m.2) == (a, b))
-        {
-            continue;
+    let greedy_match = |longest: f64| -> Vec<(f64, u32, u32)> {
+        let mut groups = StrokeGroups::new(stroke_vertices.len(), stroke_length);
+        let mut matched: Vec<(f64, u32, u32)> = Vec::new();
+        let mut remaining = slots.clone();
+        for &(_, length, a, b) in &candidates {
+            if length > longest
+                || remaining[&a] == 0
+                || remaining[&b] == 0
+                || matched.iter().any(|m| (m.1, m.2) == (a, b))
+            {
+                continue;
+            }
+            let (stroke_a, stroke_b) = (stroke_of[&a], stroke_of[&b]);
+            // DECISION: a bridge that closes a loop must be short next to the loop: at most a
+            // quarter of its length. A skip-stroke gap is a small part of the outline it
+            // interrupts; an opening as wide as a quarter of the curve is drawn on purpose (an
+            // open mouth, a "C"), and tiny loops of a few dashes are no shapes at all.
+            if groups.same(stroke_a, stroke_b) && length > 0.25 * (groups.length(stroke_a) + length)
+            {
+                continue;
+            }
+            groups.join(stroke_a, stroke_b, length);
+            *remaining.get_mut(&a).expect("free end") -= 1;
+            *remaining.get_mut(&b).expect("free end") -= 1;
+            matched.push((length, a, b));
         }
-        let (stroke_a, stroke_b) = (stroke_of[&a], stroke_of[&b]);
-        // DECISION: a bridge that closes a loop must be short next to the loop: at most a quarter
-        // of its length. A skip-stroke gap is a small part of the outline it interrupts; an
-        // opening as wide as a quarter of the curve is drawn on purpose (an open mouth, a "C"),
-        // and tiny loops of a few dashes are no shapes at all.
-        if groups.same(stroke_a, stroke_b) && length > 0.25 * (groups.length(stroke_a) + length) {
-            continue;
-        }
-        groups.join(stroke_a, stroke_b, length);
-        *remaining.get_mut(&a).expect("free end") -= 1;
-        *remaining.get_mut(&b).expect("free end") -= 1;
-        matched.push((length, a, b));
-    }
-    if matched.is_empty() {
+        matched
+    };
+    // First pass: the drawing's typical gap. Second pass: the matching itself, with overlong
+    // bridges out of the running, so that they cannot take an end from a real gap.
+    let mut lengths: Vec<f64> = greedy_match(f64::INFINITY).iter().map(|m| m.0).collect();
+    if lengths.is_empty() {
         return Vec::new();
     }
-    let mut lengths: Vec<f64> = matched.iter().map(|m| m.0).collect();
     lengths.sort_by(f64::total_cmp);
     let typical_gap = lengths[lengths.len() / 2].clamp(spacing, 3.0 * spacing);
-    matched
+    greedy_match(2.0 * typical_gap)
         .into_iter()
-        .filter(|m| m.0 <= 2.0 * typical_gap)
         .map(|m| (m.1, m.2))
         .collect()
 }
