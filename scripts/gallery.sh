@@ -9,7 +9,8 @@ crawltrace=target/release/crawltrace
 out=docs/gallery
 mkdir -p "$out"
 for name in face-scan letters-clean squares-triangles-thick spiral-waves-thin silhouettes-scan weather-alpha; do
-  input=$(ls samples/"$name".png samples/"$name".jpg 2>/dev/null | head -n 1)
+  input=samples/"$name".png
+  [ -f "$input" ] || input=samples/"$name".jpg
   "$crawltrace" trace "$input" -o "$out/$name.svg" --quiet
   "$crawltrace" render "$out/$name.svg" -o "$out/$name-traced.png"
 done
