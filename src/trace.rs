@@ -13,7 +13,7 @@ use crate::decode::to_gray;
 use crate::fit::{fit_curve, FitOptions};
 use crate::sample::{default_spacing, sample_polyline, simplification_tolerance};
 use crate::sketch::{connect, Method, SampledStroke, TracedCurve};
-use crate::strokes::extract_strokes;
+use crate::strokes::{extract_strokes, Stroke};
 use crate::svg::{CurvePath, Drawing};
 use crate::thin::thin;
 
@@ -143,25 +143,7 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
         .filter(|s| s.is_finite() && *s > 0.0)
         .unwrap_or_else(|| default_spacing(stroke_width));
     report.spacing = spacing;
-    let tolerance = simplification_tolerance(stroke_width);
-    let sampled: Vec<SampledStroke> = strokes
-        .iter()
-        .map(|stroke| {
-            // A loop needs at least four samples to be closable (the paper's "more than two
-            // edges"); small loops are sampled more densely.
-            let perimeter = loop_length(&stroke.points, stroke.closed);
-            let stroke_spacing = if stroke.closed {
-                spacing.min(perimeter / 4.0)
-            } else {
-                spacing
-            };
-            SampledStroke {
-                points: sample_polyline(&stroke.points, stroke.closed, stroke_spacing, tolerance),
-                closed: stroke.closed,
-                ends: stroke.ends,
-            }
-        })
-        .collect();
+    let sampled = sample_strokes(&strokes, spacing, simplification_tolerance(stroke_width));
     report.samples = sampled.iter().map(|s| s.points.len()).sum();
     lap(&mut report, "strokes+sample");
 
@@ -183,25 +165,7 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
             .filter(|t| t.is_finite() && *t >= 0.0)
             .unwrap_or_else(|| (0.25 * stroke_width).max(0.5)),
     };
-    let mut paths: Vec<CurvePath> = curves
-        .iter()
-        .map(|curve| CurvePath {
-            path: fit_curve(&curve.points, curve.closed, &fit_options),
-            closed: curve.closed,
-        })
-        .collect();
-    // Stable order for the SVG: by the path's first point, top to bottom, then left to right.
-    paths.sort_by(|a, b| {
-        let key = |p: &CurvePath| {
-            p.path
-                .elements()
-                .first()
-                .and_then(|e| e.end_point())
-                .unwrap_or(Point::ZERO)
-        };
-        let (ka, kb) = (key(a), key(b));
-        ka.y.total_cmp(&kb.y).then(ka.x.total_cmp(&kb.x))
-    });
+    let paths = fit_paths(&curves, &fit_options);
     lap(&mut report, "fit");
 
     let drawing = Drawing {
@@ -227,6 +191,54 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
         report,
         stages,
     })
+}
+
+/// Samples every stroke every `spacing` pixels after simplifying it within `tolerance` (the
+/// pipeline's "sample" stage, public so that benchmarks time exactly what [`trace`] runs).
+pub fn sample_strokes(strokes: &[Stroke], spacing: f64, tolerance: f64) -> Vec<SampledStroke> {
+    strokes
+        .iter()
+        .map(|stroke| {
+            // A loop needs at least four samples to be closable (the paper's "more than two
+            // edges"); small loops are sampled more densely.
+            let perimeter = loop_length(&stroke.points, stroke.closed);
+            let stroke_spacing = if stroke.closed {
+                spacing.min(perimeter / 4.0)
+            } else {
+                spacing
+            };
+            SampledStroke {
+                points: sample_polyline(&stroke.points, stroke.closed, stroke_spacing, tolerance),
+                closed: stroke.closed,
+                ends: stroke.ends,
+            }
+        })
+        .collect()
+}
+
+/// Fits every curve into a path and puts the paths in the SVG's stable order (the pipeline's
+/// "fit" stage, public so that benchmarks time exactly what [`trace`] runs).
+pub fn fit_paths(curves: &[TracedCurve], options: &FitOptions) -> Vec<CurvePath> {
+    let mut paths: Vec<CurvePath> = curves
+        .iter()
+        .map(|curve| CurvePath {
+            path: fit_curve(&curve.points, curve.closed, options),
+            closed: curve.closed,
+        })
+        .collect();
+    // Stable order for the SVG: by the path's first point, top to bottom, then left to right.
+    paths.sort_by(|a, b| {
+        let key = |p: &CurvePath| {
+            p.path
+                .elements()
+                .first()
+                .and_then(|e| e.end_point())
+                .unwrap_or(Point::ZERO)
+        };
+        let (ka, kb) = (key(a), key(b));
+        ka.y.total_cmp(&kb.y).then(ka.x.total_cmp(&kb.x))
+    });
+    paths
 }
 
 fn loop_length(points: &[Point], closed: bool) -> f64 {
