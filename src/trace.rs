@@ -1,6 +1,7 @@
 //! The tracing pipeline of `../shared/DESIGN.md`: gray → binarize → clean → thin → strokes →
 //! sample → reconstruct (the crawl) → fit → [`Drawing`]; every stage is a module of its own.
 
+use std::borrow::Cow;
 use std::time::{Duration, Instant};
 
 use image::{DynamicImage, GrayImage};
@@ -117,9 +118,16 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
         clock = now;
     };
 
-    let gray = to_gray(image);
+    // An 8-bit gray image is used as it is: copying it would cost a full image of memory.
+    let gray: Cow<'_, GrayImage> = match image {
+        DynamicImage::ImageLuma8(gray) => Cow::Borrowed(gray),
+        other => Cow::Owned(to_gray(other)),
+    };
     lap(&mut report, "gray");
     let binarized = binarize(&gray, &options.binarize);
+    let (width, height) = (f64::from(gray.width()), f64::from(gray.height()));
+    // Only --debug needs the gray image after thresholding; free it before the later stages.
+    let gray = options.keep_stages.then(|| gray.into_owned());
     report.threshold = Some(binarized.method_used);
     let mut mask = binarized.mask;
     lap(&mut report, "binarize");
@@ -169,8 +177,8 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
     lap(&mut report, "fit");
 
     let drawing = Drawing {
-        width: f64::from(gray.width()),
-        height: f64::from(gray.height()),
+        width,
+        height,
         paths,
         stroke_width: options
             .stroke_width
@@ -179,7 +187,7 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
         color: options.color.clone(),
         dots: Vec::new(),
     };
-    let stages = options.keep_stages.then_some(Stages {
+    let stages = gray.map(|gray| Stages {
         gray,
         mask,
         skeleton,
