@@ -183,11 +183,13 @@ fn print_shares(page: Page) {
 }
 
 fn main() {
-    eprintln!(
-        "page: {} ({:?})",
-        pages::SAMPLE_PAGE,
-        PNG_BYTES.1 // Sample, or Generated when the file is missing
-    );
+    match PNG_BYTES.1 {
+        pages::PageSource::Sample => eprintln!("page: {}", pages::SAMPLE_PAGE),
+        pages::PageSource::Generated => eprintln!(
+            "page: generated stand-in ({} is missing)",
+            pages::SAMPLE_PAGE
+        ),
+    }
     for page in PAGES {
         print_shares(page);
     }
