@@ -1,6 +1,7 @@
 //! The tracing pipeline of `../shared/DESIGN.md`: gray → binarize → clean → thin → strokes →
 //! sample → reconstruct (the crawl) → fit → [`Drawing`]; every stage is a module of its own.
 
+use std::borrow::Cow;
 use std::time::{Duration, Instant};
 
 use image::{DynamicImage, GrayImage};
@@ -13,7 +14,7 @@ use crate::decode::to_gray;
 use crate::fit::{fit_curve, FitOptions};
 use crate::sample::{default_spacing, sample_polyline, simplification_tolerance};
 use crate::sketch::{connect, Method, SampledStroke, TracedCurve};
-use crate::strokes::extract_strokes;
+use crate::strokes::{extract_strokes, Stroke};
 use crate::svg::{CurvePath, Drawing};
 use crate::thin::thin;
 
@@ -117,9 +118,16 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
         clock = now;
     };
 
-    let gray = to_gray(image);
+    // An 8-bit gray image is used as it is: copying it would cost a full image of memory.
+    let gray: Cow<'_, GrayImage> = match image {
+        DynamicImage::ImageLuma8(gray) => Cow::Borrowed(gray),
+        other => Cow::Owned(to_gray(other)),
+    };
     lap(&mut report, "gray");
     let binarized = binarize(&gray, &options.binarize);
+    let (width, height) = (f64::from(gray.width()), f64::from(gray.height()));
+    // Only --debug needs the gray image after thresholding; free it before the later stages.
+    let gray = options.keep_stages.then(|| gray.into_owned());
     report.threshold = Some(binarized.method_used);
     let mut mask = binarized.mask;
     lap(&mut report, "binarize");
@@ -143,25 +151,7 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
         .filter(|s| s.is_finite() && *s > 0.0)
         .unwrap_or_else(|| default_spacing(stroke_width));
     report.spacing = spacing;
-    let tolerance = simplification_tolerance(stroke_width);
-    let sampled: Vec<SampledStroke> = strokes
-        .iter()
-        .map(|stroke| {
-            // A loop needs at least four samples to be closable (the paper's "more than two
-            // edges"); small loops are sampled more densely.
-            let perimeter = loop_length(&stroke.points, stroke.closed);
-            let stroke_spacing = if stroke.closed {
-                spacing.min(perimeter / 4.0)
-            } else {
-                spacing
-            };
-            SampledStroke {
-                points: sample_polyline(&stroke.points, stroke.closed, stroke_spacing, tolerance),
-                closed: stroke.closed,
-                ends: stroke.ends,
-            }
-        })
-        .collect();
+    let sampled = sample_strokes(&strokes, spacing, simplification_tolerance(stroke_width));
     report.samples = sampled.iter().map(|s| s.points.len()).sum();
     lap(&mut report, "strokes+sample");
 
@@ -183,10 +173,64 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
             .filter(|t| t.is_finite() && *t >= 0.0)
             .unwrap_or_else(|| (0.25 * stroke_width).max(0.5)),
     };
+    let paths = fit_paths(&curves, &fit_options);
+    lap(&mut report, "fit");
+
+    let drawing = Drawing {
+        width,
+        height,
+        paths,
+        stroke_width: options
+            .stroke_width
+            .filter(|w| w.is_finite() && *w > 0.0)
+            .unwrap_or(stroke_width),
+        color: options.color.clone(),
+        dots: Vec::new(),
+    };
+    let stages = gray.map(|gray| Stages {
+        gray,
+        mask,
+        skeleton,
+        strokes: sampled,
+        curves,
+    });
+    Ok(Traced {
+        drawing,
+        report,
+        stages,
+    })
+}
+
+/// Samples every stroke every `spacing` pixels after simplifying it within `tolerance` (the
+/// pipeline's "sample" stage, public so that benchmarks time exactly what [`trace`] runs).
+pub fn sample_strokes(strokes: &[Stroke], spacing: f64, tolerance: f64) -> Vec<SampledStroke> {
+    strokes
+        .iter()
+        .map(|stroke| {
+            // A loop needs at least four samples to be closable (the paper's "more than two
+            // edges"); small loops are sampled more densely.
+            let perimeter = loop_length(&stroke.points, stroke.closed);
+            let stroke_spacing = if stroke.closed {
+                spacing.min(perimeter / 4.0)
+            } else {
+                spacing
+            };
+            SampledStroke {
+                points: sample_polyline(&stroke.points, stroke.closed, stroke_spacing, tolerance),
+                closed: stroke.closed,
+                ends: stroke.ends,
+            }
+        })
+        .collect()
+}
+
+/// Fits every curve into a path and puts the paths in the SVG's stable order (the pipeline's
+/// "fit" stage, public so that benchmarks time exactly what [`trace`] runs).
+pub fn fit_paths(curves: &[TracedCurve], options: &FitOptions) -> Vec<CurvePath> {
     let mut paths: Vec<CurvePath> = curves
         .iter()
         .map(|curve| CurvePath {
-            path: fit_curve(&curve.points, curve.closed, &fit_options),
+            path: fit_curve(&curve.points, curve.closed, options),
             closed: curve.closed,
         })
         .collect();
@@ -202,31 +246,7 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
         let (ka, kb) = (key(a), key(b));
         ka.y.total_cmp(&kb.y).then(ka.x.total_cmp(&kb.x))
     });
-    lap(&mut report, "fit");
-
-    let drawing = Drawing {
-        width: f64::from(gray.width()),
-        height: f64::from(gray.height()),
-        paths,
-        stroke_width: options
-            .stroke_width
-            .filter(|w| w.is_finite() && *w > 0.0)
-            .unwrap_or(stroke_width),
-        color: options.color.clone(),
-        dots: Vec::new(),
-    };
-    let stages = options.keep_stages.then_some(Stages {
-        gray,
-        mask,
-        skeleton,
-        strokes: sampled,
-        curves,
-    });
-    Ok(Traced {
-        drawing,
-        report,
-        stages,
-    })
+    paths
 }
 
 fn loop_length(points: &[Point], closed: bool) -> f64 {
