@@ -8,7 +8,7 @@
 //! - the output of `x/y.png` under a folder input is `OUT/x/y.svg`; two inputs with the same output
 //!   are an error before any work starts;
 //! - an input is never overwritten, and outputs are written whole ([`write_atomically`]);
-//! - an output at least as new as its input is up to date and skipped unless `force`;
+//! - an output file at least as new as its input is up to date and skipped unless `force`;
 //! - a failing file never stops the batch; it is reported and counted, and makes the exit status 1;
 //! - [`Shard`]s split the inputs by a stable hash of their relative paths, so several machines can
 //!   share one batch without talking to each other.
@@ -619,8 +619,8 @@ struct ReportLine<'a> {
 /// Runs `process` over the inputs of `discovery` on `options.jobs` threads and writes each result
 /// to `out_dir`, mirroring the relative paths (folders are created as needed).
 ///
-/// Per file, in order: an output that would land on an input is refused; an output at least as
-/// new as its input is skipped unless `options.force`; otherwise `process` runs (a panic in it is
+/// Per file, in order: an output that would land on an input is refused; an output file at least
+/// as new as its input is skipped unless `options.force`; otherwise `process` runs (a panic in it is
 /// caught and counted as a failure) and its SVG is written with [`write_atomically`]. Failures are
 /// printed as `error: <input>: <message>` as they happen and never stop the batch. A progress bar
 /// is drawn on stderr when it is a terminal and not `options.quiet`; a summary line ends the run
@@ -798,8 +798,13 @@ where
         Err(error) => return failed(describe_io(&error), None),
     };
     if !force {
-        let output_modified = fs::metadata(output).and_then(|m| m.modified());
-        if output_modified.is_ok_and(|modified| modified >= input_modified) {
+        // Only a file is an output: a folder (or anything else) in its place is not up to date,
+        // and writing there then fails with a message instead of the file being skipped quietly.
+        let output_modified = fs::metadata(output)
+            .ok()
+            .filter(|metadata| metadata.is_file())
+            .and_then(|metadata| metadata.modified().ok());
+        if output_modified.is_some_and(|modified| modified >= input_modified) {
             return FileStatus::Skipped;
         }
     }

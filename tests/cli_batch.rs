@@ -641,6 +641,28 @@ fn quiet_prints_only_errors() {
     );
 }
 
+#[test]
+fn a_folder_where_an_output_should_go_fails_that_file_only() {
+    let root = test_tree();
+    // Made after the inputs, so it is newer than `in/x/y.png`: it must still not pass for an
+    // up-to-date output.
+    fs::create_dir_all(root.path().join("out/x/y.svg")).unwrap();
+    let args = ["trace", "in/x", "-o", "out/x"];
+    let output = run_expecting(1, &args, root.path());
+    let lines = stderr_lines(&output);
+    assert!(
+        lines[0].starts_with("error: in/x/y.png: ") && lines[0].contains("out/x/y.svg"),
+        "{}",
+        describe(&args, &output)
+    );
+    assert_eq!(
+        summary_without_time(&lines[1]),
+        "1 done, 0 skipped (up to date), 1 failed"
+    );
+    assert!(root.path().join("out/x/y.svg").is_dir());
+    assert!(root.path().join("out/x/z.svg").is_file());
+}
+
 #[cfg(unix)]
 #[test]
 fn a_read_only_output_folder_fails_each_file() {
