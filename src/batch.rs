@@ -627,7 +627,8 @@ struct ReportLine<'a> {
 /// unless quiet. The report, if asked for, is written at the end.
 ///
 /// Errors (before any work): `jobs` of 0, an output folder that cannot be created, a report whose
-/// folder does not exist or that would overwrite an input; (after the work) a report that cannot
+/// folder does not exist (other than `out_dir`, which the run makes) or that would overwrite an
+/// input; (after the work) a report that cannot
 /// be written.
 pub fn run_batch<F>(
     discovery: &Discovery,
@@ -643,7 +644,7 @@ where
         return Err(BatchError::NoJobs);
     }
     if let Some(report) = &options.report {
-        check_report_path(report, &discovery.protected)?;
+        check_report_path(report, out_dir, &discovery.protected)?;
     }
     fs::create_dir_all(out_dir).map_err(|error| BatchError::OutputFolder {
         path: out_dir.to_path_buf(),
@@ -710,19 +711,32 @@ where
     Ok(summary)
 }
 
-fn check_report_path(report: &Path, protected: &HashSet<PathBuf>) -> Result<(), BatchError> {
+fn check_report_path(
+    report: &Path,
+    out_dir: &Path,
+    protected: &HashSet<PathBuf>,
+) -> Result<(), BatchError> {
     let refuse = |message: &str| BatchError::Report {
         path: report.to_path_buf(),
         message: message.to_string(),
     };
     let folder = parent_folder(report);
-    if !folder.is_dir() {
+    // The output folder is the natural place for the report, and the run creates it; a first
+    // run must not refuse what every later run accepts.
+    let in_out_dir = without_current_dir(folder).eq(without_current_dir(out_dir));
+    if !folder.is_dir() && !in_out_dir {
         return Err(refuse("its folder does not exist"));
     }
     if lands_on_protected(report, protected) {
         return Err(refuse("refusing to overwrite an input"));
     }
     Ok(())
+}
+
+/// The components of `path` without its `.`s, so that `./out` and `out` compare equal.
+fn without_current_dir(path: &Path) -> impl Iterator<Item = Component<'_>> {
+    path.components()
+        .filter(|component| *component != Component::CurDir)
 }
 
 /// The folder a file path lives in; `.` for a bare file name.

@@ -621,6 +621,22 @@ fn a_report_in_a_missing_folder_is_an_error_before_any_work() {
 }
 
 #[test]
+fn a_report_in_the_output_folder_the_run_makes_is_written() {
+    let input = tree(&[("a.png", "a")]);
+    let parent = tempfile::tempdir().unwrap();
+    // `./out` and `out/…`: the same folder spelled two ways.
+    let out = parent.path().join(".").join("out");
+    let options = BatchOptions {
+        report: Some(parent.path().join("out").join("report.jsonl")),
+        ..quiet()
+    };
+    let discovery = discover_inputs(&[input.path().to_path_buf()], &options).unwrap();
+    run_batch(&discovery, &out, &options, fake_processor).unwrap();
+
+    assert_eq!(files_under(&out), ["a.svg", "report.jsonl"]);
+}
+
+#[test]
 fn a_report_over_an_input_is_refused() {
     let input = tree(&[("a.png", "a")]);
     let out = tempfile::tempdir().unwrap();

@@ -462,6 +462,39 @@ fn the_report_has_one_json_line_per_input() {
 }
 
 #[test]
+fn the_report_can_go_into_the_output_folder_the_run_makes() {
+    let root = test_tree();
+    let args = ["trace", "in/x", "-o", "out", "--report", "out/report.jsonl"];
+    run_expecting(0, &args, root.path());
+    let report = fs::read_to_string(root.path().join("out/report.jsonl")).unwrap();
+    assert_eq!(report.lines().count(), 2, "{report}");
+    assert_outputs(
+        &root.path().join("out"),
+        &[
+            ("y.png", Drawing::Rectangle),
+            ("z.jpg", Drawing::CircleAndWave),
+        ],
+    );
+
+    // A report in a folder that nothing makes is still refused before any work.
+    let args = [
+        "trace",
+        "in/x",
+        "-o",
+        "out-2",
+        "--report",
+        "missing/report.jsonl",
+    ];
+    let output = run_expecting(2, &args, root.path());
+    assert!(
+        stderr_lines(&output)[0].contains("its folder does not exist"),
+        "{}",
+        describe(&args, &output)
+    );
+    assert!(!root.path().join("out-2").exists());
+}
+
+#[test]
 fn a_second_run_skips_everything_and_force_redoes_it() {
     let root = test_tree();
     let out = root.path().join("out");
