@@ -10,11 +10,11 @@ use std::process::ExitCode;
 
 use clap::Parser;
 use cli::{Cli, Command, MethodArg, PointsArgs, PointsFormat, RenderArgs, TraceArgs};
-use crawltrace::batch::{self, describe_io, write_atomically, BatchOptions, FileResult};
+use crawltrace::batch::{self, describe_io, write_atomically, BatchOptions};
 use crawltrace::binarize::{BinarizeOptions, ThresholdMethod};
 use crawltrace::sketch::Method;
-use crawltrace::trace::TraceOptions;
-use crawltrace::{debug, decode, pointfile, pointset, reconstruct, render, svg};
+use crawltrace::trace::{trace_file, trace_file_to_svg, TraceOptions};
+use crawltrace::{debug, pointfile, pointset, reconstruct, render, svg};
 
 /// A failure to report as `error: <file>: <what>` with an exit code.
 struct Failure {
@@ -103,13 +103,6 @@ fn validate_trace_args(args: &TraceArgs) -> Result<(), Failure> {
 /// Writes a whole file (temporary file, then rename) or says why not.
 fn save(path: &Path, bytes: &[u8]) -> Result<(), Failure> {
     write_atomically(path, bytes).map_err(|e| Failure::new(path, describe_io(&e)))
-}
-
-/// Reads, decodes and traces one image file.
-fn trace_file(input: &Path, options: &TraceOptions) -> Result<crawltrace::Traced, String> {
-    let bytes = fs::read(input).map_err(|e| describe_io(&e))?;
-    let image = decode::decode_image(&bytes).map_err(|e| e.to_string())?;
-    crawltrace::trace(&image, options).map_err(|e| e.to_string())
 }
 
 fn run_trace(args: TraceArgs) -> Result<ExitCode, Failure> {
@@ -213,12 +206,7 @@ fn run_trace_batch(args: TraceArgs) -> Result<ExitCode, Failure> {
     };
     let discovery = batch::discover_inputs(&args.inputs, &batch_options).map_err(fail)?;
     let summary = batch::run_batch(&discovery, &out_dir, &batch_options, |path| {
-        let traced = trace_file(path, &options)?;
-        Ok(FileResult {
-            svg: svg::to_svg(&traced.drawing).into_bytes(),
-            curves: traced.drawing.paths.len(),
-            closed_curves: traced.drawing.paths.iter().filter(|p| p.closed).count(),
-        })
+        trace_file_to_svg(path, &options)
     })
     .map_err(fail)?;
     Ok(ExitCode::from(summary.exit_code()))

@@ -1,20 +1,22 @@
 //! The tracing pipeline of `../shared/DESIGN.md`: gray → binarize → clean → thin → strokes →
 //! sample → reconstruct (the crawl) → fit → [`Drawing`]; every stage is a module of its own.
 
+use std::path::Path;
 use std::time::{Duration, Instant};
 
 use image::{DynamicImage, GrayImage};
 use kurbo::Point;
 
+use crate::batch::{describe_io, FileResult};
 use crate::binarize::{binarize, BinarizeOptions, MethodUsed};
 use crate::bitmap::Bitmap;
 use crate::clean::{clean, estimate_stroke_width, CleanReport};
-use crate::decode::to_gray;
+use crate::decode::{decode_image, to_gray};
 use crate::fit::{fit_curve, FitOptions};
 use crate::sample::{default_spacing, sample_polyline, simplification_tolerance};
 use crate::sketch::{connect, Method, SampledStroke, TracedCurve};
 use crate::strokes::extract_strokes;
-use crate::svg::{CurvePath, Drawing};
+use crate::svg::{to_svg, CurvePath, Drawing};
 use crate::thin::thin;
 
 /// What to do differently from the defaults. `TraceOptions::default()` needs no tuning.
@@ -226,6 +228,27 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
         drawing,
         report,
         stages,
+    })
+}
+
+/// Reads, decodes and traces one image file; the error is a one-line message for the user
+/// (without the file name).
+pub fn trace_file(path: &Path, options: &TraceOptions) -> Result<Traced, String> {
+    let bytes = std::fs::read(path).map_err(|error| describe_io(&error))?;
+    let image = decode_image(&bytes).map_err(|error| error.to_string())?;
+    trace(&image, options).map_err(|error| error.to_string())
+}
+
+/// Traces one image file into an SVG document: the per-file work of `crawltrace trace` on a
+/// folder, for [`crate::batch::run_batch`]. Public so that benchmarks and other front ends run
+/// exactly what the command runs.
+pub fn trace_file_to_svg(path: &Path, options: &TraceOptions) -> Result<FileResult, String> {
+    let traced = trace_file(path, options)?;
+    let paths = &traced.drawing.paths;
+    Ok(FileResult {
+        svg: to_svg(&traced.drawing).into_bytes(),
+        curves: paths.len(),
+        closed_curves: paths.iter().filter(|path| path.closed).count(),
     })
 }
 
