@@ -5,6 +5,9 @@
 //! - with a CPU-bound fake processor (about 5 ms of hashing a file), which measures the engine
 //!   alone, and with a processor that does nothing (the engine's own cost per file).
 //!
+//! The allocator settings of the binary (`src/allocator.rs`) are applied as in `crawltrace`;
+//! with `CRAWLTRACE_BENCH_GLIBC_DEFAULTS=1` they are not, to measure what they bring.
+//!
 //! Run: `cargo bench --bench batch` (only the real tracer: `cargo bench --bench batch -- real`).
 
 use std::fs;
@@ -30,7 +33,13 @@ const DRAWING_SIDE: u32 = 1000;
 /// The generated drawings, made on first use and deleted when the benchmarks end.
 static DRAWINGS: Mutex<Option<tempfile::TempDir>> = Mutex::new(None);
 
+#[path = "../src/allocator.rs"]
+mod allocator;
+
 fn main() {
+    if std::env::var_os("CRAWLTRACE_BENCH_GLIBC_DEFAULTS").is_none() {
+        allocator::keep_freed_memory_for_reuse();
+    }
     divan::main();
     // A `TempDir` in a static is never dropped on its own.
     drop(DRAWINGS.lock().map(|mut drawings| drawings.take()));

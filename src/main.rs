@@ -1,6 +1,9 @@
 //! The `crawltrace` command: parses arguments, reads and writes files, reports; the work is done
 //! by the library.
+// The one exception is in `allocator`, where it is allowed and explained.
+#![deny(unsafe_code)]
 
+mod allocator;
 mod cli;
 
 use std::fs;
@@ -32,6 +35,7 @@ impl Failure {
 }
 
 fn main() -> ExitCode {
+    allocator::keep_freed_memory_for_reuse();
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Trace(args) => run_trace(args),
