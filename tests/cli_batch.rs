@@ -232,8 +232,9 @@ fn count_paths(name: &str, svg: &[u8]) -> (usize, usize) {
 }
 
 /// Checks that `out` holds exactly the outputs of `relatives` (good inputs, paths under the
-/// input folder given) and that each has the paths of its drawing.
-fn assert_outputs(out: &Path, relatives: &[(&str, Drawing)]) {
+/// input folder given) and that each has the paths of its drawing; `run` (the command and its
+/// stderr) is shown on failure.
+fn assert_outputs(out: &Path, relatives: &[(&str, Drawing)], run: &str) {
     let files = files_under(out);
     let svgs: BTreeSet<String> = files
         .keys()
@@ -241,13 +242,13 @@ fn assert_outputs(out: &Path, relatives: &[(&str, Drawing)]) {
         .cloned()
         .collect();
     let expected: BTreeSet<String> = relatives.iter().map(|(r, _)| svg_name(r)).collect();
-    assert_eq!(svgs, expected, "outputs in {}", out.display());
+    assert_eq!(svgs, expected, "outputs in {}\n{run}", out.display());
     for (relative, drawing) in relatives {
         let name = svg_name(relative);
         assert_eq!(
             count_paths(&name, &files[&name]),
             drawing.expected_paths(),
-            "{name}:\n{}",
+            "{name}:\n{}\n{run}",
             String::from_utf8_lossy(&files[&name])
         );
     }
@@ -269,7 +270,7 @@ fn summary_without_time(line: &str) -> &str {
     &line[..cut]
 }
 
-/// The error lines expected for the [`BAD`] files, in input order.
+/// Checks that `lines` hold one error line for each of the [`BAD`] files, with its message.
 fn assert_failure_lines(lines: &[String], input_folder: &str) {
     let errors: Vec<&String> = lines
         .iter()
@@ -293,7 +294,11 @@ fn a_folder_is_mirrored_recursively_and_failures_are_reported() {
     let args = ["trace", "in", "-o", "out", "-r"];
     let output = run_expecting(1, &args, root.path());
 
-    assert_outputs(&root.path().join("out"), &good_under(""));
+    assert_outputs(
+        &root.path().join("out"),
+        &good_under(""),
+        &describe(&args, &output),
+    );
     let lines = stderr_lines(&output);
     assert_failure_lines(&lines, "in");
     assert_eq!(lines.len(), BAD.len() + 1, "{}", describe(&args, &output));
@@ -315,34 +320,38 @@ fn without_recursive_only_the_top_level_is_traced() {
     let root = test_tree();
     let args = ["trace", "in", "-o", "out"];
     let output = run_expecting(0, &args, root.path());
-    assert_outputs(&root.path().join("out"), &good_under("top"));
+    assert_outputs(
+        &root.path().join("out"),
+        &good_under("top"),
+        &describe(&args, &output),
+    );
     assert_eq!(
         summary_without_time(&stderr_lines(&output)[0]),
         "1 done, 0 skipped (up to date), 0 failed, 1 not images"
     );
 
     // A subfolder given as the input is the root of the mirrored layout.
-    run_expecting(0, &["trace", "in/x", "-o", "out-x"], root.path());
+    let args = ["trace", "in/x", "-o", "out-x"];
+    let output = run_expecting(0, &args, root.path());
     assert_outputs(
         &root.path().join("out-x"),
         &[
             ("y.png", Drawing::Rectangle),
             ("z.jpg", Drawing::CircleAndWave),
         ],
+        &describe(&args, &output),
     );
 
     // Files named on the command line land at the top of the output folder.
-    run_expecting(
-        0,
-        &["trace", "in/x/deep/w.png", "in/top.png", "-o", "out-files"],
-        root.path(),
-    );
+    let args = ["trace", "in/x/deep/w.png", "in/top.png", "-o", "out-files"];
+    let output = run_expecting(0, &args, root.path());
     assert_outputs(
         &root.path().join("out-files"),
         &[
             ("w.png", Drawing::TwoCircles),
             ("top.png", Drawing::CircleAndWave),
         ],
+        &describe(&args, &output),
     );
 }
 
@@ -465,7 +474,7 @@ fn the_report_has_one_json_line_per_input() {
 fn the_report_can_go_into_the_output_folder_the_run_makes() {
     let root = test_tree();
     let args = ["trace", "in/x", "-o", "out", "--report", "out/report.jsonl"];
-    run_expecting(0, &args, root.path());
+    let output = run_expecting(0, &args, root.path());
     let report = fs::read_to_string(root.path().join("out/report.jsonl")).unwrap();
     assert_eq!(report.lines().count(), 2, "{report}");
     assert_outputs(
@@ -474,6 +483,7 @@ fn the_report_can_go_into_the_output_folder_the_run_makes() {
             ("y.png", Drawing::Rectangle),
             ("z.jpg", Drawing::CircleAndWave),
         ],
+        &describe(&args, &output),
     );
 
     // A report in a folder that nothing makes is still refused before any work.
@@ -581,14 +591,13 @@ fn shards_together_produce_every_output_exactly_once() {
     assert_failure_lines(&error_lines, "in");
 
     // Into one shared folder, one shard after another: the same set, each written by one shard.
+    let mut runs = String::new();
     for index in 1..=3 {
         let shard = format!("{index}/3");
-        run(
-            &["trace", "in", "-o", "shared", "-r", "--shard", &shard],
-            root.path(),
-        );
+        let args = ["trace", "in", "-o", "shared", "-r", "--shard", &shard];
+        runs += &describe(&args, &run(&args, root.path()));
     }
-    assert_outputs(&root.path().join("shared"), &good_under(""));
+    assert_outputs(&root.path().join("shared"), &good_under(""), &runs);
 }
 
 #[test]
@@ -633,21 +642,23 @@ fn the_input_folder_as_output_never_overwrites_an_input() {
 #[test]
 fn the_glob_selects_by_file_name_or_by_relative_path() {
     let root = test_tree();
-    run_expecting(
-        0,
-        &["trace", "in", "-o", "jpegs", "-r", "--glob", "*.jpg"],
-        root.path(),
+    let args = ["trace", "in", "-o", "jpegs", "-r", "--glob", "*.jpg"];
+    let output = run_expecting(0, &args, root.path());
+    assert_outputs(
+        &root.path().join("jpegs"),
+        &good_under("x/z"),
+        &describe(&args, &output),
     );
-    assert_outputs(&root.path().join("jpegs"), &good_under("x/z"));
 
     // With a `/` the pattern is matched against the path inside the folder, and `*` stays in
     // one folder: x/deep/w.png is not taken.
-    run_expecting(
-        0,
-        &["trace", "in", "-o", "x-png", "-r", "--glob", "x/*.png"],
-        root.path(),
+    let args = ["trace", "in", "-o", "x-png", "-r", "--glob", "x/*.png"];
+    let output = run_expecting(0, &args, root.path());
+    assert_outputs(
+        &root.path().join("x-png"),
+        &good_under("x/y"),
+        &describe(&args, &output),
     );
-    assert_outputs(&root.path().join("x-png"), &good_under("x/y"));
 
     run_expecting(
         1,
@@ -660,11 +671,16 @@ fn the_glob_selects_by_file_name_or_by_relative_path() {
 #[test]
 fn quiet_prints_only_errors() {
     let root = test_tree();
-    let output = run_expecting(1, &["trace", "in", "-o", "out", "-r", "-q"], root.path());
+    let args = ["trace", "in", "-o", "out", "-r", "-q"];
+    let output = run_expecting(1, &args, root.path());
     let lines = stderr_lines(&output);
-    assert_eq!(lines.len(), BAD.len(), "{lines:#?}");
+    assert_eq!(lines.len(), BAD.len(), "{}", describe(&args, &output));
     assert_failure_lines(&lines, "in");
-    assert_outputs(&root.path().join("out"), &good_under(""));
+    assert_outputs(
+        &root.path().join("out"),
+        &good_under(""),
+        &describe(&args, &output),
+    );
 
     let output = run_expecting(0, &["trace", "in/x", "-o", "out-x", "-q"], root.path());
     assert!(
