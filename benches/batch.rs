@@ -5,8 +5,10 @@
 //! - with a CPU-bound fake processor (about 5 ms of hashing a file), which measures the engine
 //!   alone, and with a processor that does nothing (the engine's own cost per file).
 //!
-//! The allocator settings of the binary (`src/allocator.rs`) are applied as in `crawltrace`;
-//! with `CRAWLTRACE_BENCH_GLIBC_DEFAULTS=1` they are not, to measure what they bring.
+//! The allocator settings of the binary (`src/allocator.rs`) are applied as in `crawltrace`. What
+//! they bring does not show here even without them: generating the drawings frees large blocks
+//! first, which raises glibc's adaptive thresholds before any timing. It shows on the binary
+//! (see `src/allocator.rs`).
 //!
 //! Run: `cargo bench --bench batch` (only the real tracer: `cargo bench --bench batch -- real`).
 
@@ -37,9 +39,7 @@ static DRAWINGS: Mutex<Option<tempfile::TempDir>> = Mutex::new(None);
 mod allocator;
 
 fn main() {
-    if std::env::var_os("CRAWLTRACE_BENCH_GLIBC_DEFAULTS").is_none() {
-        allocator::keep_freed_memory_for_reuse();
-    }
+    allocator::keep_freed_memory_for_reuse();
     divan::main();
     // A `TempDir` in a static is never dropped on its own.
     drop(DRAWINGS.lock().map(|mut drawings| drawings.take()));
