@@ -11,6 +11,12 @@
 //! (see `src/allocator.rs`).
 //!
 //! Run: `cargo bench --bench batch` (only the real tracer: `cargo bench --bench batch -- real`).
+//!
+//! Measured 2026-11 on the 2-core development machine (1-minute load 0.4–1.1 at the start, other
+//! engineers' work in the background), four runs, mean throughput of the real tracer: 111–132
+//! drawings/s at jobs=1 and 202–251 at jobs=2, jobs=2 1.82–1.90× jobs=1 (best quiet run 129.5 →
+//! 244.3, 1.89×). One drawing takes about 6.7 ms to read, decode and trace; the engine adds about
+//! 0.6 ms per file (mostly flushing the output to disk: `run_batch_200_files_no_work`).
 
 use std::fs;
 use std::hint::black_box;
