@@ -8,7 +8,7 @@
 //! - the output of `x/y.png` under a folder input is `OUT/x/y.svg`; two inputs with the same output
 //!   are an error before any work starts;
 //! - an input is never overwritten, and outputs are written whole ([`write_atomically`]);
-//! - an output at least as new as its input is up to date and skipped unless `force`;
+//! - an output file at least as new as its input is up to date and skipped unless `force`;
 //! - a failing file never stops the batch; it is reported and counted, and makes the exit status 1;
 //! - [`Shard`]s split the inputs by a stable hash of their relative paths, so several machines can
 //!   share one batch without talking to each other.
@@ -619,15 +619,16 @@ struct ReportLine<'a> {
 /// Runs `process` over the inputs of `discovery` on `options.jobs` threads and writes each result
 /// to `out_dir`, mirroring the relative paths (folders are created as needed).
 ///
-/// Per file, in order: an output that would land on an input is refused; an output at least as
-/// new as its input is skipped unless `options.force`; otherwise `process` runs (a panic in it is
+/// Per file, in order: an output that would land on an input is refused; an output file at least
+/// as new as its input is skipped unless `options.force`; otherwise `process` runs (a panic in it is
 /// caught and counted as a failure) and its SVG is written with [`write_atomically`]. Failures are
 /// printed as `error: <input>: <message>` as they happen and never stop the batch. A progress bar
 /// is drawn on stderr when it is a terminal and not `options.quiet`; a summary line ends the run
 /// unless quiet. The report, if asked for, is written at the end.
 ///
 /// Errors (before any work): `jobs` of 0, an output folder that cannot be created, a report whose
-/// folder does not exist or that would overwrite an input; (after the work) a report that cannot
+/// folder does not exist (other than `out_dir`, which the run makes) or that would overwrite an
+/// input; (after the work) a report that cannot
 /// be written.
 pub fn run_batch<F>(
     discovery: &Discovery,
@@ -643,7 +644,7 @@ where
         return Err(BatchError::NoJobs);
     }
     if let Some(report) = &options.report {
-        check_report_path(report, &discovery.protected)?;
+        check_report_path(report, out_dir, &discovery.protected)?;
     }
     fs::create_dir_all(out_dir).map_err(|error| BatchError::OutputFolder {
         path: out_dir.to_path_buf(),
@@ -710,19 +711,32 @@ where
     Ok(summary)
 }
 
-fn check_report_path(report: &Path, protected: &HashSet<PathBuf>) -> Result<(), BatchError> {
+fn check_report_path(
+    report: &Path,
+    out_dir: &Path,
+    protected: &HashSet<PathBuf>,
+) -> Result<(), BatchError> {
     let refuse = |message: &str| BatchError::Report {
         path: report.to_path_buf(),
         message: message.to_string(),
     };
     let folder = parent_folder(report);
-    if !folder.is_dir() {
+    // The output folder is the natural place for the report, and the run creates it; a first
+    // run must not refuse what every later run accepts.
+    let in_out_dir = without_current_dir(folder).eq(without_current_dir(out_dir));
+    if !folder.is_dir() && !in_out_dir {
         return Err(refuse("its folder does not exist"));
     }
     if lands_on_protected(report, protected) {
         return Err(refuse("refusing to overwrite an input"));
     }
     Ok(())
+}
+
+/// The components of `path` without its `.`s, so that `./out` and `out` compare equal.
+fn without_current_dir(path: &Path) -> impl Iterator<Item = Component<'_>> {
+    path.components()
+        .filter(|component| *component != Component::CurDir)
 }
 
 /// The folder a file path lives in; `.` for a bare file name.
@@ -798,8 +812,13 @@ where
         Err(error) => return failed(describe_io(&error), None),
     };
     if !force {
-        let output_modified = fs::metadata(output).and_then(|m| m.modified());
-        if output_modified.is_ok_and(|modified| modified >= input_modified) {
+        // Only a file is an output: a folder (or anything else) in its place is not up to date,
+        // and writing there then fails with a message instead of the file being skipped quietly.
+        let output_modified = fs::metadata(output)
+            .ok()
+            .filter(|metadata| metadata.is_file())
+            .and_then(|metadata| metadata.modified().ok());
+        if output_modified.is_some_and(|modified| modified >= input_modified) {
             return FileStatus::Skipped;
         }
     }

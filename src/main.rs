@@ -1,6 +1,9 @@
 //! The `crawltrace` command: parses arguments, reads and writes files, reports; the work is done
 //! by the library.
+// The one exception is in `allocator`, where it is allowed and explained.
+#![deny(unsafe_code)]
 
+mod allocator;
 mod cli;
 
 use std::fs;
@@ -10,12 +13,11 @@ use std::process::ExitCode;
 
 use clap::Parser;
 use cli::{Cli, Command, MethodArg, PointsArgs, PointsFormat, RenderArgs, TraceArgs};
-use crawltrace::batch::{self, describe_io, write_atomically, BatchOptions, FileResult};
+use crawltrace::batch::{self, describe_io, write_atomically, BatchOptions};
 use crawltrace::binarize::{BinarizeOptions, ThresholdMethod};
 use crawltrace::sketch::Method;
-use crawltrace::trace::TraceOptions;
-use crawltrace::{debug, decode, pointfile, pointset, reconstruct, render, svg};
-use image::DynamicImage;
+use crawltrace::trace::{trace_file, trace_file_to_svg, TraceOptions};
+use crawltrace::{debug, pointfile, pointset, reconstruct, render, svg};
 
 /// A failure to report as `error: <file>: <what>` with an exit code.
 struct Failure {
@@ -33,6 +35,7 @@ impl Failure {
 }
 
 fn main() -> ExitCode {
+    allocator::keep_freed_memory_for_reuse();
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Trace(args) => run_trace(args),
@@ -104,20 +107,6 @@ fn validate_trace_args(args: &TraceArgs) -> Result<(), Failure> {
 /// Writes a whole file (temporary file, then rename) or says why not.
 fn save(path: &Path, bytes: &[u8]) -> Result<(), Failure> {
     write_atomically(path, bytes).map_err(|e| Failure::new(path, describe_io(&e)))
-}
-
-/// Reads, decodes and traces one image file.
-fn trace_file(input: &Path, options: &TraceOptions) -> Result<crawltrace::Traced, String> {
-    let bytes = fs::read(input).map_err(|e| describe_io(&e))?;
-    let image = decode::decode_image(&bytes).map_err(|e| e.to_string())?;
-    drop(bytes);
-    // The trace starts by reducing the image to 8-bit gray; doing it here instead lets the
-    // colour pixels (3 to 16 bytes each) go before the trace, not after it. Same result.
-    let image = match image {
-        gray @ DynamicImage::ImageLuma8(_) => gray,
-        other => DynamicImage::ImageLuma8(decode::to_gray(&other)),
-    };
-    crawltrace::trace(&image, options).map_err(|e| e.to_string())
 }
 
 fn run_trace(args: TraceArgs) -> Result<ExitCode, Failure> {
@@ -221,12 +210,7 @@ fn run_trace_batch(args: TraceArgs) -> Result<ExitCode, Failure> {
     };
     let discovery = batch::discover_inputs(&args.inputs, &batch_options).map_err(fail)?;
     let summary = batch::run_batch(&discovery, &out_dir, &batch_options, |path| {
-        let traced = trace_file(path, &options)?;
-        Ok(FileResult {
-            svg: svg::to_svg(&traced.drawing).into_bytes(),
-            curves: traced.drawing.paths.len(),
-            closed_curves: traced.drawing.paths.iter().filter(|p| p.closed).count(),
-        })
+        trace_file_to_svg(path, &options)
     })
     .map_err(fail)?;
     Ok(ExitCode::from(summary.exit_code()))

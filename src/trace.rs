@@ -2,20 +2,22 @@
 //! sample → reconstruct (the crawl) → fit → [`Drawing`]; every stage is a module of its own.
 
 use std::borrow::Cow;
+use std::path::Path;
 use std::time::{Duration, Instant};
 
 use image::{DynamicImage, GrayImage};
 use kurbo::Point;
 
+use crate::batch::{describe_io, FileResult};
 use crate::binarize::{binarize, BinarizeOptions, MethodUsed};
 use crate::bitmap::Bitmap;
 use crate::clean::{clean, estimate_stroke_width, CleanReport};
-use crate::decode::to_gray;
+use crate::decode::{decode_image, to_gray};
 use crate::fit::{fit_curve, FitOptions};
 use crate::sample::{default_spacing, sample_polyline, simplification_tolerance};
 use crate::sketch::{connect, Method, SampledStroke, TracedCurve};
 use crate::strokes::{extract_strokes, Stroke};
-use crate::svg::{CurvePath, Drawing};
+use crate::svg::{to_svg, CurvePath, Drawing};
 use crate::thin::thin;
 
 /// What to do differently from the defaults. `TraceOptions::default()` needs no tuning.
@@ -247,6 +249,34 @@ pub fn fit_paths(curves: &[TracedCurve], options: &FitOptions) -> Vec<CurvePath>
         ka.y.total_cmp(&kb.y).then(ka.x.total_cmp(&kb.x))
     });
     paths
+}
+
+/// Reads, decodes and traces one image file; the error is a one-line message for the user
+/// (without the file name).
+pub fn trace_file(path: &Path, options: &TraceOptions) -> Result<Traced, String> {
+    let bytes = std::fs::read(path).map_err(|error| describe_io(&error))?;
+    let image = decode_image(&bytes).map_err(|error| error.to_string())?;
+    drop(bytes);
+    // The trace starts by reducing the image to 8-bit gray; doing it here instead lets the
+    // colour pixels (3 to 16 bytes each) go before the trace, not after it. Same result.
+    let image = match image {
+        gray @ DynamicImage::ImageLuma8(_) => gray,
+        other => DynamicImage::ImageLuma8(to_gray(&other)),
+    };
+    trace(&image, options).map_err(|error| error.to_string())
+}
+
+/// Traces one image file into an SVG document: the per-file work of `crawltrace trace` on a
+/// folder, for [`crate::batch::run_batch`]. Public so that benchmarks and other front ends run
+/// exactly what the command runs.
+pub fn trace_file_to_svg(path: &Path, options: &TraceOptions) -> Result<FileResult, String> {
+    let traced = trace_file(path, options)?;
+    let paths = &traced.drawing.paths;
+    Ok(FileResult {
+        svg: to_svg(&traced.drawing).into_bytes(),
+        curves: paths.len(),
+        closed_curves: paths.iter().filter(|path| path.closed).count(),
+    })
 }
 
 fn loop_length(points: &[Point], closed: bool) -> f64 {

@@ -264,6 +264,23 @@ fn an_output_subfolder_blocked_by_a_file_gives_per_file_errors() {
     assert!(message.starts_with("cannot create the folder"), "{message}");
 }
 
+#[test]
+fn a_folder_in_place_of_an_output_is_not_up_to_date() {
+    let input = tree(&[("a.png", "a"), ("b.png", "b")]);
+    // Made after the inputs, so newer than them, as a finished output would be.
+    let out = tempfile::tempdir().unwrap();
+    fs::create_dir(out.path().join("a.svg")).unwrap();
+    let summary = run(&[input.path()], out.path(), &quiet());
+
+    assert_eq!(with_status(&summary, "failed"), ["a.png"]);
+    assert_eq!(with_status(&summary, "done"), ["b.png"]);
+    let FileStatus::Failed { message, .. } = &summary.outcomes[0].status else {
+        panic!("{:?}", summary.outcomes[0]);
+    };
+    assert!(message.starts_with("cannot write"), "{message}");
+    assert!(out.path().join("a.svg").is_dir());
+}
+
 #[cfg(unix)]
 #[test]
 fn a_read_only_output_folder_gives_per_file_errors() {
@@ -601,6 +618,22 @@ fn a_report_in_a_missing_folder_is_an_error_before_any_work() {
         "{result:?}"
     );
     assert!(files_under(out.path()).is_empty());
+}
+
+#[test]
+fn a_report_in_the_output_folder_the_run_makes_is_written() {
+    let input = tree(&[("a.png", "a")]);
+    let parent = tempfile::tempdir().unwrap();
+    // `./out` and `out/…`: the same folder spelled two ways.
+    let out = parent.path().join(".").join("out");
+    let options = BatchOptions {
+        report: Some(parent.path().join("out").join("report.jsonl")),
+        ..quiet()
+    };
+    let discovery = discover_inputs(&[input.path().to_path_buf()], &options).unwrap();
+    run_batch(&discovery, &out, &options, fake_processor).unwrap();
+
+    assert_eq!(files_under(&out), ["a.svg", "report.jsonl"]);
 }
 
 #[test]
