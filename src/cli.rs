@@ -93,8 +93,11 @@ pub struct TraceArgs {
     #[arg(long, value_enum, default_value_t = MethodArg::Strokes, help_heading = "Reconstruction")]
     pub method: MethodArg,
 
+    /// Smooth cubic Béziers with sharp corners kept (the default).
+    #[arg(long, overrides_with = "no_smooth", help_heading = "Output")]
+    pub smooth: bool,
     /// Write straight segments instead of smooth cubic Béziers.
-    #[arg(long, help_heading = "Output")]
+    #[arg(long, overrides_with = "smooth", help_heading = "Output")]
     pub no_smooth: bool,
     /// Largest deviation of a path from the reconstructed curve, in pixels (default: a quarter of
     /// the pen width, at least 0.5).
