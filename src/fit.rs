@@ -5,6 +5,7 @@
 use kurbo::{BezPath, Point, Vec2};
 
 use crate::sample::simplify_polyline;
+use crate::svg::CurvePath;
 
 /// How curves are turned into paths.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -25,7 +26,7 @@ pub fn fit_curve(points: &[Point], closed: bool, options: &FitOptions) -> BezPat
     let closed = closed && points.len() > 2;
     if !options.smooth || points.len() < 3 {
         let simplified = simplify_polyline(points, closed, options.tolerance);
-        return polyline_path(&simplified, closed);
+        return CurvePath::polyline(&simplified, closed).path;
     }
     let corners = find_corners(points, closed);
     let spline = if closed && corners.is_empty() {
@@ -76,21 +77,6 @@ pub fn fit_curve(points: &[Point], closed: bool, options: &FitOptions) -> BezPat
         return with_close;
     }
     simplified
-}
-
-fn polyline_path(points: &[Point], closed: bool) -> BezPath {
-    let mut path = BezPath::new();
-    for (i, &p) in points.iter().enumerate() {
-        if i == 0 {
-            path.move_to(p);
-        } else {
-            path.line_to(p);
-        }
-    }
-    if closed && points.len() > 2 {
-        path.close_path();
-    }
-    path
 }
 
 fn turn_degrees(incoming: Vec2, outgoing: Vec2) -> f64 {

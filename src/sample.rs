@@ -22,6 +22,15 @@ pub fn simplification_tolerance(stroke_width: f64) -> f64 {
     (0.25 * stroke_width).max(0.7)
 }
 
+/// The length of an ordered chain of points, including the closing segment if `closed`.
+pub fn polyline_length(points: &[Point], closed: bool) -> f64 {
+    let open: f64 = points.windows(2).map(|w| w[0].distance(w[1])).sum();
+    match (closed, points.first(), points.last()) {
+        (true, Some(&first), Some(&last)) => open + first.distance(last),
+        _ => open,
+    }
+}
+
 /// Ramer–Douglas–Peucker simplification of an ordered chain of points: a subset of its vertices
 /// (always including the ends of an open chain) within `tolerance` of the original.
 pub fn simplify_polyline(points: &[Point], closed: bool, tolerance: f64) -> Vec<Point> {

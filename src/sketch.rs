@@ -15,6 +15,7 @@ use std::collections::HashMap;
 use kurbo::Point;
 
 use crate::reconstruct::{self, crawl, ChainEnds, NeighbourGraph};
+use crate::sample::polyline_length;
 use crate::strokes::StrokeEnd;
 
 /// A stroke after sampling: what [`connect_strokes`] works on.
@@ -72,7 +73,7 @@ pub fn connect(
         .collect();
     curves
         .into_iter()
-        .filter(|curve| curve_length(curve) >= minimum_length)
+        .filter(|curve| polyline_length(&curve.points, curve.closed) >= minimum_length)
         .map(|mut curve| {
             if !curve.closed && curve.points.len() >= 2 {
                 extend_end(&mut curve.points, false, end_extension, &attached);
@@ -95,14 +96,6 @@ fn extend_end(points: &mut [Point], at_last: bool, extension: f64, attached: &[P
     let length = direction.hypot();
     if length > 0.0 {
         points[end] += direction * (extension / length);
-    }
-}
-
-fn curve_length(curve: &TracedCurve) -> f64 {
-    let open: f64 = curve.points.windows(2).map(|w| w[0].distance(w[1])).sum();
-    match (curve.closed, curve.points.first(), curve.points.last()) {
-        (true, Some(&first), Some(&last)) => open + first.distance(last),
-        _ => open,
     }
 }
 
@@ -150,7 +143,7 @@ pub fn connect_strokes(strokes: &[SampledStroke], spacing: f64) -> Vec<TracedCur
     let mut dash_of_vertex: HashMap<u32, (Point, Point)> = HashMap::new();
     let dot_of = |stroke: &SampledStroke| -> Option<(Point, f64)> {
         let (first, last) = (*stroke.points.first()?, *stroke.points.last()?);
-        let length: f64 = stroke.points.windows(2).map(|w| w[0].distance(w[1])).sum();
+        let length = polyline_length(&stroke.points, false);
         let free = stroke.ends == [StrokeEnd::Free, StrokeEnd::Free];
         (!stroke.closed && free && length <= 2.0 * spacing)
             .then(|| (first.midpoint(last), 0.5 * length))
@@ -377,10 +370,11 @@ fn match_gap_bridges(
     // Strokes joined by accepted bridges, with their total length, to see when a bridge would
     // close a loop.
     let stroke_length = |stroke: usize| -> f64 {
-        stroke_vertices[stroke]
-            .windows(2)
-            .map(|w| positions[w[0] as usize].distance(positions[w[1] as usize]))
-            .sum()
+        let points: Vec<Point> = stroke_vertices[stroke]
+            .iter()
+            .map(|&v| positions[v as usize])
+            .collect();
+        polyline_length(&points, false)
     };
     let greedy_match = |longest: f64| -> Vec<(f64, u32, u32)> {
         let mut groups = StrokeGroups::new(stroke_vertices.len(), stroke_length);

@@ -11,6 +11,7 @@ use std::collections::{HashMap, HashSet};
 use kurbo::Point;
 
 use crate::bitmap::{Bitmap, NEIGHBOUR_OFFSETS};
+use crate::sample::polyline_length;
 
 /// How one end of a [`Stroke`] ends.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -86,10 +87,6 @@ const PATH_PIXEL: usize = usize::MAX;
 
 fn centre(x: usize, y: usize) -> Point {
     Point::new(x as f64 + 0.5, y as f64 + 0.5)
-}
-
-fn polyline_length(points: &[Point]) -> f64 {
-    points.windows(2).map(|w| w[0].distance(w[1])).sum()
 }
 
 impl SkeletonGraph {
@@ -293,7 +290,7 @@ impl SkeletonGraph {
         let mut to_remove = Vec::new();
         for (i, branch) in self.branches.iter().enumerate() {
             let Some((a, z)) = branch.nodes else { continue };
-            let length = polyline_length(&branch.points);
+            let length = polyline_length(&branch.points, false);
             if length >= max_length {
                 continue;
             }
@@ -339,7 +336,7 @@ impl SkeletonGraph {
                 let far = if at_start { z } else { a };
                 if far == node
                     || self.degree(far) != 1
-                    || polyline_length(&branch.points) >= max_length
+                    || polyline_length(&branch.points, false) >= max_length
                 {
                     continue;
                 }
@@ -409,7 +406,7 @@ impl SkeletonGraph {
             .filter(|(_, b)| !b.removed)
             .filter_map(|(i, b)| {
                 let (a, z) = b.nodes?;
-                let length = polyline_length(&b.points);
+                let length = polyline_length(&b.points, false);
                 let is_spur = (self.degree(a) == 1 && self.degree(z) >= 3)
                     || (self.degree(z) == 1 && self.degree(a) >= 3);
                 (is_spur && length < spur_length).then_some((length, i))

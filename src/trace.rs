@@ -14,7 +14,7 @@ use crate::bitmap::Bitmap;
 use crate::clean::{clean, estimate_stroke_width, CleanReport};
 use crate::decode::{decode_image, to_gray};
 use crate::fit::{fit_curve, FitOptions};
-use crate::sample::{default_spacing, sample_polyline, simplification_tolerance};
+use crate::sample::{default_spacing, polyline_length, sample_polyline, simplification_tolerance};
 use crate::sketch::{connect, Method, SampledStroke, TracedCurve};
 use crate::strokes::{extract_strokes, Stroke};
 use crate::svg::{to_svg, CurvePath, Drawing};
@@ -211,7 +211,7 @@ pub fn sample_strokes(strokes: &[Stroke], spacing: f64, tolerance: f64) -> Vec<S
         .map(|stroke| {
             // A loop needs at least four samples to be closable (the paper's "more than two
             // edges"); small loops are sampled more densely.
-            let perimeter = loop_length(&stroke.points, stroke.closed);
+            let perimeter = polyline_length(&stroke.points, stroke.closed);
             let stroke_spacing = if stroke.closed {
                 spacing.min(perimeter / 4.0)
             } else {
@@ -277,12 +277,4 @@ pub fn trace_file_to_svg(path: &Path, options: &TraceOptions) -> Result<FileResu
         curves: paths.len(),
         closed_curves: paths.iter().filter(|path| path.closed).count(),
     })
-}
-
-fn loop_length(points: &[Point], closed: bool) -> f64 {
-    let open: f64 = points.windows(2).map(|w| w[0].distance(w[1])).sum();
-    match (closed, points.first(), points.last()) {
-        (true, Some(&a), Some(&b)) => open + a.distance(b),
-        _ => open,
-    }
 }

@@ -16,21 +16,7 @@ const PER_PIXEL_TOLERANCE: u8 = 48;
 const ALLOWED_DIFFERING_PER_MILLION: usize = 2_000;
 
 fn samples() -> Vec<PathBuf> {
-    let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join("samples");
-    let mut images: Vec<PathBuf> = std::fs::read_dir(folder)
-        .expect("samples/ exists")
-        .filter_map(|entry| entry.ok().map(|e| e.path()))
-        .filter(|path| crawltrace::batch::is_image_path(path))
-        .filter(|path| {
-            !path
-                .file_name()
-                .unwrap()
-                .to_string_lossy()
-                .starts_with("page-")
-        })
-        .collect();
-    images.sort();
-    images
+    support::sample_images()
 }
 
 #[test]

@@ -23,21 +23,7 @@ const KNOWN_FAILURES: &[(&str, &str)] = &[
 ];
 
 fn samples() -> Vec<PathBuf> {
-    let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join("samples");
-    let mut images: Vec<PathBuf> = std::fs::read_dir(&folder)
-        .expect("samples/ exists")
-        .filter_map(|entry| entry.ok().map(|e| e.path()))
-        .filter(|path| crawltrace::batch::is_image_path(path))
-        // The 12-megapixel page is for the benchmark; it is too slow for a debug-build test.
-        .filter(|path| {
-            !path
-                .file_name()
-                .unwrap()
-                .to_string_lossy()
-                .starts_with("page-")
-        })
-        .collect();
-    images.sort();
+    let images = support::sample_images();
     assert!(
         images.len() >= 10,
         "expected at least ten samples, found {images:?}"

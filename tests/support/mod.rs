@@ -26,6 +26,26 @@ pub struct Polyline {
     pub closed: bool,
 }
 
+/// The sample drawings in `samples/` (every image file), sorted, without the 12-megapixel
+/// benchmark page, which is too slow for debug-build tests.
+pub fn sample_images() -> Vec<std::path::PathBuf> {
+    let folder = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("samples");
+    let mut images: Vec<std::path::PathBuf> = std::fs::read_dir(&folder)
+        .unwrap_or_else(|e| panic!("{}: {e}", folder.display()))
+        .filter_map(|entry| entry.ok().map(|e| e.path()))
+        .filter(|path| crawltrace::batch::is_image_path(path))
+        .filter(|path| {
+            !path
+                .file_name()
+                .unwrap()
+                .to_string_lossy()
+                .starts_with("page-")
+        })
+        .collect();
+    images.sort();
+    images
+}
+
 /// Every subpath of every path in `svg_text`, flattened finely and moved by the path's absolute
 /// transform (viewBox included), in document order. Paths usvg drops as invisible (no fill and
 /// no stroke) are not seen.
