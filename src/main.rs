@@ -49,6 +49,11 @@ fn run_points(args: PointsArgs) -> Result<ExitCode, Failure> {
     } else {
         args.input.clone()
     };
+    let output = args.output.filter(|o| o.as_os_str() != "-");
+    // Refuse before doing any work: a large input takes a while to reconstruct.
+    if let Some(path) = &output {
+        refuse_to_overwrite_input(path, &[&args.input])?;
+    }
     let bytes = if from_stdin {
         let mut bytes = Vec::new();
         io::stdin()
@@ -76,7 +81,6 @@ fn run_points(args: PointsArgs) -> Result<ExitCode, Failure> {
             file.lines[first.kept],
         );
     }
-    let output = args.output.filter(|o| o.as_os_str() != "-");
     let format = args.format.unwrap_or(match &output {
         Some(path) if has_extension(path, "svg") => PointsFormat::Svg,
         _ => PointsFormat::Json,
@@ -91,10 +95,7 @@ fn run_points(args: PointsArgs) -> Result<ExitCode, Failure> {
         ),
     }
     match output {
-        Some(path) => {
-            refuse_to_overwrite_input(&path, &[&args.input])?;
-            write_atomically(&path, &text)?;
-        }
+        Some(path) => write_atomically(&path, &text)?,
         None => io::stdout()
             .lock()
             .write_all(&text)
