@@ -157,8 +157,14 @@ fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), Failure> {
         Some(parent) if !parent.as_os_str().is_empty() => parent,
         _ => Path::new("."),
     };
-    let mut temporary =
-        tempfile::NamedTempFile::new_in(folder).map_err(|e| Failure::new(path, describe_io(&e)))?;
+    let mut builder = tempfile::Builder::new();
+    // A temporary file is private (0600) by default; the result should get the permissions any
+    // new file gets (0666 less the umask), as if written directly.
+    #[cfg(unix)]
+    builder.permissions(std::os::unix::fs::PermissionsExt::from_mode(0o666));
+    let mut temporary = builder
+        .tempfile_in(folder)
+        .map_err(|e| Failure::new(path, describe_io(&e)))?;
     temporary
         .write_all(bytes)
         .map_err(|e| Failure::new(path, describe_io(&e)))?;

@@ -510,6 +510,30 @@ fn an_existing_output_is_replaced_whole() {
     assert!(!line.contains("os error"), "{line}");
 }
 
+#[cfg(unix)]
+#[test]
+fn output_files_get_the_usual_permissions() {
+    use std::os::unix::fs::PermissionsExt;
+    let folder = folder();
+    fs::write(folder.path().join("scene.txt"), scene_text()).unwrap();
+    // std::fs::write creates files with 0666 less the umask, as any program would.
+    fs::write(folder.path().join("plain"), "").unwrap();
+    let usual = fs::metadata(folder.path().join("plain"))
+        .unwrap()
+        .permissions()
+        .mode()
+        & 0o777;
+    for output in ["out.json", "out.svg"] {
+        crawltrace(folder.path(), &["points", "scene.txt", "-o", output], None).succeeded();
+        let mode = fs::metadata(folder.path().join(output))
+            .unwrap()
+            .permissions()
+            .mode()
+            & 0o777;
+        assert_eq!(mode, usual, "{output}: {mode:o} instead of {usual:o}");
+    }
+}
+
 /// All `usvg` path nodes under `group`, recursively.
 fn path_count(group: &usvg::Group) -> usize {
     group
