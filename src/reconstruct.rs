@@ -360,38 +360,76 @@ impl NeighbourGraph {
         }
         debug_assert_eq!(triangulation.num_vertices(), n);
 
-        // Adjacency lists from sequential passes over the edges, looking ids up by vertex handle
-        // in a compact table (spade's own vertex records are larger and farther apart). Walking
-        // each vertex's edges instead chases pointers all over the edge list.
+        // Adjacency lists from passes over the edges in memory order, looking ids up by vertex
+        // handle in a compact table (spade's own vertex records are larger and farther apart).
+        // Walking each vertex's edges instead chases pointers all over the edge list.
         let id_of_handle: Vec<u32> = triangulation.vertices().map(|v| v.data().id).collect();
-        let mut degree = vec![0u32; n];
-        let edges: Vec<(u32, u32)> = triangulation
-            .undirected_edges()
-            .map(|edge| {
-                let [a, b] = edge.vertices();
-                let a = id_of_handle[a.fix().index()];
-                let b = id_of_handle[b.fix().index()];
-                degree[a as usize] += 1;
-                degree[b as usize] += 1;
-                (a, b)
+        let handles: Vec<_> = triangulation.fixed_undirected_edges().collect();
+        let edges: Vec<(u32, u32)> = handles
+            .par_iter()
+            .map(|&handle| {
+                let [a, b] = triangulation.undirected_edge(handle).vertices();
+                (id_of_handle[a.fix().index()], id_of_handle[b.fix().index()])
             })
             .collect();
+        drop(handles);
         drop(triangulation);
-        let mut offsets = vec![0usize; n + 1];
-        for v in 0..n {
-            offsets[v + 1] = offsets[v] + degree[v] as usize;
+        Ok(Self::from_edge_list(positions, &edges))
+    }
+
+    /// A graph with the given undirected edges, which must be distinct and not loops.
+    ///
+    /// The vertices are split into one range per thread; each thread reads every edge and fills
+    /// in the adjacency lists of its own range, so no two threads write to the same place.
+    fn from_edge_list(positions: &[Point], edges: &[(u32, u32)]) -> Self {
+        let n = positions.len();
+        let parts = rayon::current_num_threads().clamp(1, 64).min(n.max(1));
+        let bounds: Vec<usize> = (0..=parts).map(|k| n * k / parts).collect();
+        let degrees: Vec<Vec<u32>> = (0..parts)
+            .into_par_iter()
+            .map(|k| {
+                let range = bounds[k]..bounds[k + 1];
+                let mut degree = vec![0u32; range.len()];
+                for &(a, b) in edges {
+                    for v in [a as usize, b as usize] {
+                        if range.contains(&v) {
+                            degree[v - range.start] += 1;
+                        }
+                    }
+                }
+                degree
+            })
+            .collect();
+        let mut offsets = Vec::with_capacity(n + 1);
+        offsets.push(0usize);
+        for degree in degrees.iter().flatten() {
+            offsets.push(offsets.last().expect("starts with 0") + *degree as usize);
         }
-        drop(degree);
+        drop(degrees);
         let mut neighbours = vec![0u32; offsets[n]];
-        let mut next_slot = offsets[..n].to_vec();
-        for &(a, b) in &edges {
-            neighbours[next_slot[a as usize]] = b;
-            next_slot[a as usize] += 1;
-            neighbours[next_slot[b as usize]] = a;
-            next_slot[b as usize] += 1;
+        let mut pieces = Vec::with_capacity(parts);
+        let mut rest = &mut neighbours[..];
+        for k in 0..parts {
+            let (piece, more) = rest.split_at_mut(offsets[bounds[k + 1]] - offsets[bounds[k]]);
+            pieces.push((bounds[k]..bounds[k + 1], piece));
+            rest = more;
         }
-        drop(edges);
-        Ok(Self::with_sorted_adjacency(positions, offsets, neighbours))
+        pieces.into_par_iter().for_each(|(range, piece)| {
+            let base = offsets[range.start];
+            let mut next_slot: Vec<usize> =
+                offsets[range.clone()].iter().map(|o| o - base).collect();
+            for &(a, b) in edges {
+                for (from, to) in [(a, b), (b, a)] {
+                    let from = from as usize;
+                    if range.contains(&from) {
+                        let slot = &mut next_slot[from - range.start];
+                        piece[*slot] = to;
+                        *slot += 1;
+                    }
+                }
+            }
+        });
+        Self::with_sorted_adjacency(positions, offsets, neighbours)
     }
 
     /// The path through collinear `positions` in order along their line.
@@ -452,23 +490,14 @@ impl NeighbourGraph {
 
     /// A graph with the given undirected edges; duplicate edges and self-loops are ignored.
     pub fn from_edges(positions: &[Point], edges: impl IntoIterator<Item = (u32, u32)>) -> Self {
-        let n = positions.len();
         let mut pairs: Vec<(u32, u32)> = edges
             .into_iter()
             .filter(|(a, b)| a != b)
-            .flat_map(|(a, b)| [(a, b), (b, a)])
+            .map(|(a, b)| (a.min(b), a.max(b)))
             .collect();
-        pairs.sort_unstable();
+        pairs.par_sort_unstable();
         pairs.dedup();
-        let mut offsets = vec![0usize; n + 1];
-        for &(a, _) in &pairs {
-            offsets[a as usize + 1] += 1;
-        }
-        for i in 0..n {
-            offsets[i + 1] += offsets[i];
-        }
-        let neighbours: Vec<u32> = pairs.iter().map(|&(_, b)| b).collect();
-        Self::with_sorted_adjacency(positions, offsets, neighbours)
+        Self::from_edge_list(positions, &pairs)
     }
 
     /// Number of vertices.
