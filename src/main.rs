@@ -64,6 +64,7 @@ fn run_points(args: PointsArgs) -> Result<ExitCode, Failure> {
         fs::read(&args.input).map_err(|e| Failure::new(&input_name, describe_io(&e)))?
     };
     let file = pointfile::parse_points(&bytes).map_err(|e| Failure::new(&input_name, e))?;
+    drop(bytes); // The text of a large file is no longer needed: keep the peak memory down.
     let reconstruction = reconstruct(&file.points).map_err(|e| {
         let line = match e {
             reconstruct::ReconstructError::NotFinite { index }
