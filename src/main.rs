@@ -223,6 +223,11 @@ fn run_points(args: PointsArgs) -> Result<ExitCode, Failure> {
     } else {
         args.input.clone()
     };
+    let output = args.output.filter(|o| o.as_os_str() != "-");
+    // Refuse before doing any work: a large input takes a while to reconstruct.
+    if let Some(path) = &output {
+        refuse_to_overwrite_input(path, &[&args.input])?;
+    }
     let bytes = if from_stdin {
         let mut bytes = Vec::new();
         io::stdin()
@@ -233,6 +238,7 @@ fn run_points(args: PointsArgs) -> Result<ExitCode, Failure> {
         fs::read(&args.input).map_err(|e| Failure::new(&input_name, describe_io(&e)))?
     };
     let file = pointfile::parse_points(&bytes).map_err(|e| Failure::new(&input_name, e))?;
+    drop(bytes); // The text of a large file is no longer needed: keep the peak memory down.
     let reconstruction = reconstruct(&file.points).map_err(|e| {
         let line = match e {
             reconstruct::ReconstructError::NotFinite { index }
@@ -250,7 +256,6 @@ fn run_points(args: PointsArgs) -> Result<ExitCode, Failure> {
             file.lines[first.kept],
         );
     }
-    let output = args.output.filter(|o| o.as_os_str() != "-");
     let format = args.format.unwrap_or(match &output {
         Some(path) if has_extension(path, "svg") => PointsFormat::Svg,
         _ => PointsFormat::Json,
@@ -265,10 +270,8 @@ fn run_points(args: PointsArgs) -> Result<ExitCode, Failure> {
         ),
     }
     match output {
-        Some(path) => {
-            refuse_to_overwrite_input(&path, &[&args.input])?;
-            write_atomically(&path, &text).map_err(|e| Failure::new(&path, describe_io(&e)))?;
-        }
+        // Checked against the input before reading it, above.
+        Some(path) => save(&path, &text)?,
         None => io::stdout()
             .lock()
             .write_all(&text)

@@ -2,6 +2,7 @@
 //! ending (`\n`, `\r\n`, old-Mac `\r`); the format of `../shared/DESIGN.md`, "Command line".
 
 use kurbo::Point;
+use rayon::prelude::*;
 
 /// Why a point file could not be read.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
@@ -40,11 +41,75 @@ pub struct PointFile {
 /// Columns after the second are ignored. The first non-comment line may be a header (for example
 /// `x,y` from a spreadsheet): if it holds no number at all it is skipped and reported in
 /// [`PointFile::header_line`]. Any later line that does not start with two numbers is an error.
+///
+/// Large files are parsed in pieces on all cores; the result, errors included, is the same as
+/// parsing line by line.
 pub fn parse_points(bytes: &[u8]) -> Result<PointFile, PointFileError> {
+    parse_in_pieces(bytes, PIECE_SIZE)
+}
+
+/// [`parse_points`] with pieces of about `piece_size` bytes.
+fn parse_in_pieces(bytes: &[u8], piece_size: usize) -> Result<PointFile, PointFileError> {
     let bytes = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes);
-    let mut file = PointFile::default();
-    let mut seen_data = false;
+    let pieces = split_into_pieces(bytes, piece_size);
+    let parsed: Vec<Piece> = if pieces.len() == 1 {
+        vec![parse_piece(pieces[0])]
+    } else {
+        pieces.into_par_iter().map(parse_piece).collect()
+    };
+    // Put the pieces together as one sequential pass would have read them.
+    let mut file = PointFile {
+        points: Vec::with_capacity(parsed.iter().map(|piece| piece.points.len()).sum()),
+        lines: Vec::with_capacity(parsed.iter().map(|piece| piece.lines.len()).sum()),
+        header_line: None,
+    };
+    let mut lines_before = 0;
+    let mut content_before = false;
+    for piece in parsed {
+        if let Some((line, found)) = piece.header {
+            if content_before {
+                // Only the file's first non-comment line may be a header.
+                return Err(PointFileError::NotAPoint {
+                    line: lines_before + line,
+                    found,
+                });
+            }
+            file.header_line = Some(lines_before + line);
+        }
+        if let Some(error) = piece.error {
+            return Err(error.shifted(lines_before));
+        }
+        file.points.extend_from_slice(&piece.points);
+        file.lines
+            .extend(piece.lines.iter().map(|&line| lines_before + line));
+        lines_before += piece.line_count;
+        content_before |= piece.has_content;
+    }
+    Ok(file)
+}
+
+/// Pieces of about this many bytes are parsed in parallel.
+const PIECE_SIZE: usize = 1 << 20;
+
+/// What one piece of a file holds, its line numbers counted from 1 at the piece's start.
+#[derive(Default)]
+struct Piece {
+    points: Vec<Point>,
+    lines: Vec<usize>,
+    line_count: usize,
+    /// The piece's first non-comment line, if it held no number: its line and shortened text.
+    header: Option<(usize, String)>,
+    /// Whether the piece has a line that is not blank or a comment.
+    has_content: bool,
+    /// The first bad line after the header, if any (parsing stops there).
+    error: Option<PointFileError>,
+}
+
+/// Parses `bytes` as if it were a whole file (a header allowed on its first non-comment line).
+fn parse_piece(bytes: &[u8]) -> Piece {
+    let mut piece = Piece::default();
     for (index, line) in split_lines(bytes).enumerate() {
+        piece.line_count = index + 1;
         let line_number = index + 1;
         let content = match line.iter().position(|&b| b == b'#') {
             Some(hash) => &line[..hash],
@@ -54,36 +119,74 @@ pub fn parse_points(bytes: &[u8]) -> Result<PointFile, PointFileError> {
             .split(|&b| b == b' ' || b == b'\t' || b == b',' || b == b';')
             .filter(|field| !field.is_empty());
         let Some(first) = fields.next() else { continue };
+        let is_first_content = !piece.has_content;
+        piece.has_content = true;
         let second = fields.next();
         match (parse_number(first), second.map(parse_number)) {
             (Some(x), Some(Some(y))) => {
                 for (value, field) in [(x, first), (y, second.unwrap_or_default())] {
                     if !value.is_finite() {
-                        return Err(PointFileError::NotFinite {
+                        piece.error = Some(PointFileError::NotFinite {
                             line: line_number,
                             found: String::from_utf8_lossy(field).into_owned(),
                         });
+                        return piece;
                     }
                 }
-                file.points.push(Point::new(x, y));
-                file.lines.push(line_number);
-                seen_data = true;
+                piece.points.push(Point::new(x, y));
+                piece.lines.push(line_number);
             }
             (first_number, second_number) => {
                 let holds_no_number = first_number.is_none() && second_number.flatten().is_none();
-                if !seen_data && file.header_line.is_none() && holds_no_number {
-                    file.header_line = Some(line_number);
-                    seen_data = true;
+                if is_first_content && holds_no_number {
+                    piece.header = Some((line_number, shorten(content)));
                     continue;
                 }
-                return Err(PointFileError::NotAPoint {
+                piece.error = Some(PointFileError::NotAPoint {
                     line: line_number,
                     found: shorten(content),
                 });
+                return piece;
             }
         }
     }
-    Ok(file)
+    piece
+}
+
+/// Cuts `bytes` into pieces of about `size` bytes, each ending with a line (never between the
+/// `\r` and `\n` of one line ending).
+fn split_into_pieces(bytes: &[u8], size: usize) -> Vec<&[u8]> {
+    let mut pieces = Vec::new();
+    let mut rest = bytes;
+    while rest.len() > size {
+        let cut = (size..rest.len()).find(|&i| match rest[i - 1] {
+            b'\n' => true,
+            b'\r' => rest[i] != b'\n',
+            _ => false,
+        });
+        let Some(cut) = cut else { break };
+        let (piece, more) = rest.split_at(cut);
+        pieces.push(piece);
+        rest = more;
+    }
+    pieces.push(rest);
+    pieces
+}
+
+impl PointFileError {
+    /// The same error with its line number moved on by `lines`.
+    fn shifted(self, lines: usize) -> Self {
+        match self {
+            Self::NotAPoint { line, found } => Self::NotAPoint {
+                line: line + lines,
+                found,
+            },
+            Self::NotFinite { line, found } => Self::NotFinite {
+                line: line + lines,
+                found,
+            },
+        }
+    }
 }
 
 /// Splits on `\r\n`, `\n` and lone `\r`.
@@ -197,6 +300,53 @@ mod tests {
             matches!(error, PointFileError::NotAPoint { line: 2, .. }),
             "{error}"
         );
+    }
+
+    #[test]
+    fn parsing_in_pieces_gives_what_one_pass_gives() {
+        let texts: [&[u8]; 12] = [
+            b"1 2\n3 4\n5 6\n7 8\n9 10\n",
+            b"x,y\r\n1,2\r\n3,4\r\n5,6\r\n",
+            b"# c\r# d\r\rx y\r1 2\r3 4\r5 6",
+            b"\n\n\n# only comments\n\n\nx y\n1 2\n3 4\n",
+            b"1 2\n3 4\nx y\n5 6\n",
+            b"# a\n# b\n# c\n# d\n# e\nx y\nz w\n1 2\n",
+            b"1 2\n3 4\n5 6\n7 nan\n9 10\n",
+            b"1 2\r\n3 4\r\n5\r\n7 8\r\n",
+            b"1 2\n3 4\n5 6\n\xff 7\n",
+            b"\xEF\xBB\xBFx;y\n1;2\n3;4 # end\n",
+            b"1 2\r\n\r\n\r\n3 4\r\r\n5 6\n\r7 8",
+            b"",
+        ];
+        for text in texts {
+            let whole = parse_in_pieces(text, usize::MAX);
+            for size in 1..=text.len() + 1 {
+                assert_eq!(
+                    parse_in_pieces(text, size),
+                    whole,
+                    "pieces of {size} bytes of {:?}",
+                    String::from_utf8_lossy(text)
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn pieces_end_with_whole_lines() {
+        let text = b"1 2\r\n3 4\r5 6\n7 8\r\n";
+        for size in 1..text.len() {
+            let pieces = split_into_pieces(text, size);
+            assert_eq!(pieces.concat(), text);
+            for piece in &pieces[..pieces.len() - 1] {
+                assert!(matches!(piece.last(), Some(b'\n' | b'\r')), "{pieces:?}");
+            }
+            for pair in pieces.windows(2) {
+                assert!(
+                    !(pair[0].ends_with(b"\r") && pair[1].starts_with(b"\n")),
+                    "a line ending cut in two: {pieces:?}"
+                );
+            }
+        }
     }
 
     #[test]

@@ -4,6 +4,7 @@
 use std::io::{self, Write};
 
 use kurbo::{Point, Rect};
+use rayon::prelude::*;
 use serde::Serialize;
 
 use crate::reconstruct::Reconstruction;
@@ -16,26 +17,21 @@ struct JsonCurve<'a> {
     points: Vec<[f64; 2]>,
 }
 
-#[derive(Serialize)]
-struct JsonReconstruction<'a> {
-    curves: Vec<JsonCurve<'a>>,
-    outliers: &'a [usize],
-    /// `[dropped, kept]` input indices of exact duplicates that were merged.
-    duplicates: Vec<[usize; 2]>,
-}
-
 /// Writes `{"curves":[{"closed":…,"indices":[…],"points":[[x,y],…]}],"outliers":[…],"duplicates":[[dropped,kept],…]}`
 /// followed by a newline. Indices count the input points from 0; coordinates are the input's.
+///
+/// The curves are formatted in parallel, each by serde_json on its own, then joined: the bytes
+/// are those serde_json writes for the whole document at once.
 pub fn write_json(
     out: &mut impl Write,
     points: &[Point],
     reconstruction: &Reconstruction,
 ) -> io::Result<()> {
-    let document = JsonReconstruction {
-        curves: reconstruction
-            .curves
-            .iter()
-            .map(|curve| JsonCurve {
+    let curves: Vec<Vec<u8>> = reconstruction
+        .curves
+        .par_iter()
+        .map(|curve| {
+            let json = JsonCurve {
                 closed: curve.closed,
                 indices: &curve.indices,
                 points: curve
@@ -43,17 +39,28 @@ pub fn write_json(
                     .iter()
                     .map(|&i| [points[i].x, points[i].y])
                     .collect(),
-            })
-            .collect(),
-        outliers: &reconstruction.outliers,
-        duplicates: reconstruction
-            .merged_duplicates
-            .iter()
-            .map(|d| [d.dropped, d.kept])
-            .collect(),
-    };
-    serde_json::to_writer(&mut *out, &document).map_err(io::Error::from)?;
-    out.write_all(b"\n")
+            };
+            serde_json::to_vec(&json).expect("a curve serializes: it holds numbers only")
+        })
+        .collect();
+    out.write_all(b"{\"curves\":[")?;
+    for (k, curve) in curves.iter().enumerate() {
+        if k > 0 {
+            out.write_all(b",")?;
+        }
+        out.write_all(curve)?;
+    }
+    out.write_all(b"],\"outliers\":")?;
+    serde_json::to_writer(&mut *out, &reconstruction.outliers).map_err(io::Error::from)?;
+    out.write_all(b",\"duplicates\":")?;
+    // `[dropped, kept]` input indices of exact duplicates that were merged.
+    let duplicates: Vec<[usize; 2]> = reconstruction
+        .merged_duplicates
+        .iter()
+        .map(|d| [d.dropped, d.kept])
+        .collect();
+    serde_json::to_writer(&mut *out, &duplicates).map_err(io::Error::from)?;
+    out.write_all(b"}\n")
 }
 
 /// The longer side of the canvas a point set is drawn on, in pixels.
@@ -137,6 +144,71 @@ mod tests {
             String::from_utf8(out).unwrap(),
             "{\"curves\":[{\"closed\":true,\"indices\":[0,1,2],\"points\":[[0.0,0.0],[1.5,0.0],[1.5,2.0]]}],\"outliers\":[3],\"duplicates\":[[4,0]]}\n"
         );
+    }
+
+    #[test]
+    fn json_is_what_serde_json_writes_for_the_whole_document() {
+        #[derive(Serialize)]
+        struct Document<'a> {
+            curves: Vec<JsonCurve<'a>>,
+            outliers: &'a [usize],
+            duplicates: Vec<[usize; 2]>,
+        }
+        let points: Vec<Point> = (0..40)
+            .map(|k| Point::new(k as f64 * 0.1 - 1.0, (k * k) as f64 / 7.0 + 1e-9))
+            .collect();
+        let curve = |indices: Vec<usize>, closed| Curve { indices, closed };
+        for reconstruction in [
+            Reconstruction::default(),
+            Reconstruction {
+                curves: vec![
+                    curve((0..10).collect(), true),
+                    curve(vec![12, 11, 13], false),
+                    curve((20..40).rev().collect(), true),
+                ],
+                outliers: vec![10, 14, 15],
+                merged_duplicates: vec![
+                    MergedDuplicate {
+                        dropped: 16,
+                        kept: 3,
+                    },
+                    MergedDuplicate {
+                        dropped: 17,
+                        kept: 3,
+                    },
+                ],
+            },
+        ] {
+            let document = Document {
+                curves: reconstruction
+                    .curves
+                    .iter()
+                    .map(|c| JsonCurve {
+                        closed: c.closed,
+                        indices: &c.indices,
+                        points: c
+                            .indices
+                            .iter()
+                            .map(|&i| [points[i].x, points[i].y])
+                            .collect(),
+                    })
+                    .collect(),
+                outliers: &reconstruction.outliers,
+                duplicates: reconstruction
+                    .merged_duplicates
+                    .iter()
+                    .map(|d| [d.dropped, d.kept])
+                    .collect(),
+            };
+            let mut expected = serde_json::to_vec(&document).unwrap();
+            expected.push(b'\n');
+            let mut out = Vec::new();
+            write_json(&mut out, &points, &reconstruction).unwrap();
+            assert_eq!(
+                String::from_utf8(out).unwrap(),
+                String::from_utf8(expected).unwrap()
+            );
+        }
     }
 
     #[test]

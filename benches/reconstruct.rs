@@ -1,0 +1,119 @@
+//! Benchmarks of point-set reconstruction (divan): the Delaunay triangulation, the crawl on it, the
+//! whole `reconstruct`, and the file stages of `crawltrace points` (parsing, JSON), on 10k, 100k and
+//! 1M points sampled from many closed curves.
+//!
+//! ```sh
+//! cargo bench --bench reconstruct
+//! ```
+
+use std::f64::consts::TAU;
+
+use crawltrace::reconstruct::{crawl, paper_closable, reconstruct, NeighbourGraph};
+use crawltrace::{pointfile, pointset, Point};
+use divan::{black_box, Bencher};
+
+fn main() {
+    divan::main();
+}
+
+const SIZES: [usize; 3] = [10_000, 100_000, 1_000_000];
+
+/// SplitMix64: a tiny deterministic generator, so every run measures the same points.
+struct SplitMix64(u64);
+
+impl SplitMix64 {
+    fn unit(&mut self) -> f64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+/// `count` points on many closed curves (ellipses of 100 to 1000 points, about 0.01 apart, each
+/// in its own cell of a grid), in file order: the same scenes as `examples/many_curves.rs`.
+fn curve_points(count: usize) -> Vec<Point> {
+    let mut random = SplitMix64(7);
+    let columns = ((count as f64 / 550.0).sqrt().ceil() as usize).max(1);
+    let mut points = Vec::with_capacity(count);
+    let mut cell = 0;
+    while points.len() < count {
+        let size = ((100.0 + 900.0 * random.unit()) as usize).min(count - points.len());
+        let aspect = 1.0 + random.unit();
+        let a = 0.01 * size as f64 / (std::f64::consts::PI * (1.0 + 1.0 / aspect));
+        let centre = (
+            4.0 * (cell % columns) as f64 + 2.0,
+            4.0 * (cell / columns) as f64 + 2.0,
+        );
+        let phase = TAU * random.unit();
+        for k in 0..size {
+            let angle = phase + TAU * (k as f64 + 0.3 * random.unit()) / size as f64;
+            // Rounded to 6 decimals, as in a point file.
+            let round = |value: f64| (value * 1e6).round() / 1e6;
+            points.push(Point::new(
+                round(centre.0 + a * angle.cos()),
+                round(centre.1 + a / aspect * angle.sin()),
+            ));
+        }
+        cell += 1;
+    }
+    points
+}
+
+/// The distinct points in lexicographic order: what `reconstruct` triangulates.
+fn canonical(points: &[Point]) -> Vec<Point> {
+    let mut positions = points.to_vec();
+    positions.sort_unstable_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
+    positions.dedup();
+    positions
+}
+
+#[divan::bench(args = SIZES, sample_count = 5, sample_size = 1)]
+fn triangulation(bencher: Bencher, count: usize) {
+    let positions = canonical(&curve_points(count));
+    bencher.bench(|| NeighbourGraph::delaunay(black_box(&positions)).unwrap());
+}
+
+#[divan::bench(args = SIZES, sample_count = 5, sample_size = 1)]
+fn crawl_on_triangulation(bencher: Bencher, count: usize) {
+    let positions = canonical(&curve_points(count));
+    let graph = NeighbourGraph::delaunay(&positions).unwrap();
+    bencher.bench(|| {
+        crawl(black_box(&positions), black_box(&graph), |chain| {
+            paper_closable(&positions, &graph, chain)
+        })
+    });
+}
+
+#[divan::bench(args = SIZES, sample_count = 5, sample_size = 1)]
+fn reconstruct_whole(bencher: Bencher, count: usize) {
+    let points = curve_points(count);
+    bencher.bench(|| reconstruct(black_box(&points)).unwrap());
+}
+
+/// The point file `crawltrace points` would read for `count` points.
+fn point_file(count: usize) -> Vec<u8> {
+    let mut text = String::new();
+    for p in curve_points(count) {
+        text.push_str(&format!("{} {}\n", p.x, p.y));
+    }
+    text.into_bytes()
+}
+
+#[divan::bench(args = SIZES, sample_count = 5, sample_size = 1)]
+fn parse_point_file(bencher: Bencher, count: usize) {
+    let bytes = point_file(count);
+    bencher.bench(|| pointfile::parse_points(black_box(&bytes)).unwrap());
+}
+
+#[divan::bench(args = SIZES, sample_count = 5, sample_size = 1)]
+fn write_json(bencher: Bencher, count: usize) {
+    let points = curve_points(count);
+    let reconstruction = reconstruct(&points).unwrap();
+    bencher.bench(|| {
+        let mut out = Vec::new();
+        pointset::write_json(&mut out, black_box(&points), &reconstruction).unwrap();
+        out
+    });
+}
