@@ -35,6 +35,9 @@ pub struct PointsArgs {
     /// Output format; by default taken from the extension of `-o` (`.svg` → svg), else json.
     #[arg(long, value_enum)]
     pub format: Option<PointsFormat>,
+    /// In SVG output, draw every input point as a dot over the curves.
+    #[arg(long)]
+    pub show_points: bool,
 }
 
 /// Output formats of `crawltrace points`.

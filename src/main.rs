@@ -265,8 +265,12 @@ fn run_points(args: PointsArgs) -> Result<ExitCode, Failure> {
         PointsFormat::Json => pointset::write_json(&mut text, &file.points, &reconstruction)
             .map_err(|e| Failure::new(&input_name, e))?,
         PointsFormat::Svg => text.extend_from_slice(
-            crawltrace::svg::to_svg(&pointset::to_drawing(&file.points, &reconstruction))
-                .as_bytes(),
+            crawltrace::svg::to_svg(&pointset::to_drawing(
+                &file.points,
+                &reconstruction,
+                args.show_points,
+            ))
+            .as_bytes(),
         ),
     }
     match output {

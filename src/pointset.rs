@@ -68,8 +68,9 @@ const CANVAS_SIZE: f64 = 1000.0;
 
 /// Draws the reconstruction: the point set's bounding box is scaled onto a canvas 1000 px on its
 /// longer side (so that two decimals are enough whatever the input's units), with a margin.
-/// Outliers are drawn as red dots. The y axis points down, as in the input's own units.
-pub fn to_drawing(points: &[Point], reconstruction: &Reconstruction) -> Drawing {
+/// Outliers are drawn as red dots, and with `show_points` every input point as a blue dot. The y
+/// axis points down, as in the input's own units.
+pub fn to_drawing(points: &[Point], reconstruction: &Reconstruction, show_points: bool) -> Drawing {
     let bounds = points
         .iter()
         .fold(None::<Rect>, |bounds, &p| {
@@ -110,6 +111,11 @@ pub fn to_drawing(points: &[Point], reconstruction: &Reconstruction) -> Drawing 
             .iter()
             .map(|&i| map(points[i]))
             .collect(),
+        points: if show_points {
+            points.iter().map(|&p| map(p)).collect()
+        } else {
+            Vec::new()
+        },
     }
 }
 
@@ -225,7 +231,7 @@ mod tests {
             }],
             ..Default::default()
         };
-        let drawing = to_drawing(&points, &reconstruction);
+        let drawing = to_drawing(&points, &reconstruction, false);
         assert_eq!((drawing.width, drawing.height), (1040.0, 540.0));
         let end = drawing.paths[0]
             .path

@@ -19,8 +19,11 @@ pub struct Drawing {
     pub stroke_width: f64,
     /// Stroke colour, any SVG colour (`#000000`, `black`, …).
     pub color: String,
-    /// Points drawn as small dots (outliers of a point set); empty for traced images.
+    /// Points drawn as small red dots (outliers of a point set); empty for traced images.
     pub dots: Vec<Point>,
+    /// Points drawn as small blue dots over the curves (every input point of a point set, with
+    /// `points --show-points`); empty otherwise.
+    pub points: Vec<Point>,
 }
 
 /// One curve of a [`Drawing`].
@@ -124,21 +127,33 @@ pub fn to_svg(drawing: &Drawing) -> String {
         let _ = writeln!(svg, r#"<path d="{}"/>"#, path_data(&curve.path));
     }
     svg.push_str("</g>\n");
-    if !drawing.dots.is_empty() {
-        let radius = format_number((drawing.stroke_width * 0.75).max(0.01));
-        svg.push_str("<g fill=\"#d33\">\n");
-        for dot in &drawing.dots {
-            let _ = writeln!(
-                svg,
-                r#"<circle cx="{}" cy="{}" r="{radius}"/>"#,
-                format_number(dot.x),
-                format_number(dot.y)
-            );
-        }
-        svg.push_str("</g>\n");
-    }
+    write_dots(
+        &mut svg,
+        &drawing.points,
+        "#1e5adc",
+        drawing.stroke_width * 1.2,
+    );
+    write_dots(&mut svg, &drawing.dots, "#d33", drawing.stroke_width * 1.5);
     svg.push_str("</svg>\n");
     svg
+}
+
+/// A group of filled circles of `radius` at `centres`; nothing when there are none.
+fn write_dots(svg: &mut String, centres: &[Point], fill: &str, radius: f64) {
+    if centres.is_empty() {
+        return;
+    }
+    let radius = format_number(radius.max(0.01));
+    let _ = writeln!(svg, r#"<g fill="{fill}">"#);
+    for centre in centres {
+        let _ = writeln!(
+            svg,
+            r#"<circle cx="{}" cy="{}" r="{radius}"/>"#,
+            format_number(centre.x),
+            format_number(centre.y)
+        );
+    }
+    svg.push_str("</g>\n");
 }
 
 fn escape_attribute(value: &str) -> String {
@@ -194,6 +209,7 @@ mod tests {
             stroke_width: 2.0,
             color: "black".into(),
             dots: vec![],
+            points: vec![],
         };
         let svg = to_svg(&drawing);
         assert!(

@@ -188,6 +188,7 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
             .unwrap_or(stroke_width),
         color: options.color.clone(),
         dots: Vec::new(),
+        points: Vec::new(),
     };
     let stages = gray.map(|gray| Stages {
         gray,

@@ -573,3 +573,40 @@ fn svg_output_parses_with_usvg() {
     assert_eq!(path_count(tree.root()), 5, "{svg}");
     assert_eq!(svg.matches(" Z\"").count(), 2, "two closed curves\n{svg}");
 }
+
+#[test]
+fn the_sample_point_set_comes_back_as_documented() {
+    // samples/points/shapes.txt: a ring (two closed curves), a circle, a square and a house
+    // (closed), an open wave, and five outliers (examples/make_point_set.rs).
+    let sample = Path::new(env!("CARGO_MANIFEST_DIR")).join("samples/points/shapes.txt");
+    let sample = sample.to_str().unwrap();
+    let place = folder();
+    let run = crawltrace(place.path(), &["points", sample], None);
+    assert_eq!(run.code, Some(0), "{}", run.describe());
+    let json = run.json();
+    let curves = json["curves"].as_array().unwrap();
+    let closed = curves
+        .iter()
+        .filter(|c| c["closed"] == Value::Bool(true))
+        .count();
+    assert_eq!((curves.len(), closed), (6, 5), "{}", run.describe());
+    assert_eq!(json["outliers"].as_array().unwrap().len(), 5);
+
+    let run = crawltrace(
+        place.path(),
+        &["points", sample, "--format", "svg", "--show-points"],
+        None,
+    );
+    assert_eq!(run.code, Some(0), "{}", run.describe());
+    let svg = String::from_utf8(run.stdout.clone()).unwrap();
+    let point_count = fs::read_to_string(sample)
+        .unwrap()
+        .lines()
+        .filter(|line| !line.starts_with('#') && !line.trim().is_empty())
+        .count();
+    // Every point as a blue dot, and the outliers once more in red.
+    assert_eq!(svg.matches("<circle ").count(), point_count + 5, "{svg}");
+    let plain = crawltrace(place.path(), &["points", sample, "--format", "svg"], None);
+    let plain = String::from_utf8(plain.stdout).unwrap();
+    assert_eq!(plain.matches("<circle ").count(), 5);
+}
