@@ -126,6 +126,7 @@ fn truth_svg(name: &str, style: Style, seed: u64, scene: &Scene) -> String {
         stroke_width: style.pen(),
         color: "black".into(),
         dots: Vec::new(),
+        points: Vec::new(),
     };
     let svg = to_svg(&drawing);
     // A note after the root element's start tag says where the file comes from.

@@ -175,6 +175,7 @@ fn band_around(curves: &[Polyline], size: (u32, u32), reach: f64) -> Vec<bool> {
         stroke_width: 2.0 * reach,
         color: "black".into(),
         dots: Vec::new(),
+        points: Vec::new(),
     };
     let band = render_svg(&to_svg(&drawing), 1.0).expect("band renders");
     band.pixels().map(|p| p.0[0] < 255).collect()
