@@ -381,11 +381,8 @@ fn match_gap_bridges(
         let mut matched: Vec<(f64, u32, u32)> = Vec::new();
         let mut remaining = slots.clone();
         for &(_, length, a, b) in &candidates {
-            if length > longest
-                || remaining[&a] == 0
-                || remaining[&b] == 0
-                || matched.iter().any(|m| (m.1, m.2) == (a, b))
-            {
+            // Each pair is a candidate once: `dedup` above removed the copy a two-slot dot makes.
+            if length > longest || remaining[&a] == 0 || remaining[&b] == 0 {
                 continue;
             }
             let (stroke_a, stroke_b) = (stroke_of[&a], stroke_of[&b]);

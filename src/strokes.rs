@@ -46,7 +46,7 @@ pub fn extract_strokes(skeleton: &Bitmap, stroke_width: f64) -> Vec<Stroke> {
     // A corner drawn with a thick pen fills with ink; its skeleton runs into the corner as a
     // spur from a junction just inside it. The spur's tip is the corner.
     let direction_scale = (2.0 * stroke_width).max(4.0);
-    graph.fold_corner_spurs((6.0 * stroke_width).max(6.0), direction_scale, 0.0);
+    graph.fold_corner_spurs((6.0 * stroke_width).max(6.0), direction_scale);
     // Thinning leaves a spur at every bump of a stroke's outline; bumps are at most about half a
     // pen width high, so their spurs are shorter than one pen width. Pruning can expose a new
     // spur (two spurs forking off one branch), hence a second round.
@@ -321,7 +321,7 @@ impl SkeletonGraph {
     /// pointing away from both others (each other branch leaves within 60° of the direction
     /// opposite the spur), the spur is a filled corner: it is removed and the junction moves to
     /// its tip, so the two sides meet there in a sharp corner.
-    fn fold_corner_spurs(&mut self, max_length: f64, direction_scale: f64, extension: f64) {
+    fn fold_corner_spurs(&mut self, max_length: f64, direction_scale: f64) {
         for node in 0..self.nodes.len() {
             let ends = self.nodes[node].ends.clone();
             if ends.len() != 3 {
@@ -366,17 +366,13 @@ impl SkeletonGraph {
             if sides.len() != 2 {
                 continue;
             }
-            // The spur's tip lies half a pen width inside the ink's corner (thinning erodes ends).
-            let spur_direction =
-                self.leaving_direction(spur_branch, spur_at_start, direction_scale);
             let tip = {
                 let points = &self.branches[spur_branch].points;
-                let end = if spur_at_start {
+                if spur_at_start {
                     points[points.len() - 1]
                 } else {
                     points[0]
-                };
-                end + spur_direction * extension
+                }
             };
             self.remove_branch(spur_branch);
             self.nodes[node].position = tip;
