@@ -177,3 +177,27 @@ fn many_sampled_circles_come_back_as_closed_curves() {
         assert_eq!(sorted, circle.clone().collect::<Vec<_>>());
     }
 }
+
+/// A 1000 × 1000 page of 2 × 2 px specks covering 5 % of it, traced with the default options.
+/// Before the fit stage had its own bounded fitter, `kurbo::simplify_bezpath` never returned on
+/// this page (kurbo issue #602): the test would hang instead of passing.
+#[test]
+fn a_page_of_specks_is_traced_not_hung() {
+    let (width, height) = (1000u32, 1000u32);
+    let mut page = image::GrayImage::from_pixel(width, height, image::Luma([255]));
+    let mut random = SplitMix64(1);
+    let specks = (width * height) as usize * 5 / 100 / 4;
+    for _ in 0..specks {
+        let x = (random.next_u64() % u64::from(width - 2)) as u32;
+        let y = (random.next_u64() % u64::from(height - 2)) as u32;
+        for (dx, dy) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
+            page.put_pixel(x + dx, y + dy, image::Luma([0]));
+        }
+    }
+    let traced = crawltrace::trace(
+        &image::DynamicImage::ImageLuma8(page),
+        &crawltrace::TraceOptions::default(),
+    )
+    .expect("the specks are ink");
+    assert!(!traced.drawing.paths.is_empty());
+}
