@@ -14,22 +14,20 @@
 #![warn(missing_docs)]
 
 pub mod batch;
-pub mod binarize;
-pub mod bitmap;
-pub mod clean;
-pub mod debug;
-pub mod decode;
-pub mod fit;
-pub mod pointfile;
-pub mod pointset;
-pub mod reconstruct;
-pub mod render;
-pub mod sample;
-pub mod sketch;
+pub mod crawl;
+pub mod geometry;
+pub mod output;
+pub mod points;
+pub mod raster;
 pub mod strokes;
-pub mod svg;
-pub mod thin;
 pub mod trace;
+
+// The paths of the flat layout, kept until the library API is curated.
+pub use crawl::{reconstruct, strokes as sketch};
+pub use geometry::polyline as sample;
+pub use output::{debug, fit, render, svg};
+pub use points::{read as pointfile, write as pointset};
+pub use raster::{binarize, bitmap, clean, decode, thin};
 
 pub use kurbo::Point;
 pub use reconstruct::{reconstruct, Curve, Reconstruction};

@@ -9,16 +9,18 @@ use image::{DynamicImage, GrayImage};
 use kurbo::Point;
 
 use crate::batch::{describe_io, FileResult};
-use crate::binarize::{binarize, BinarizeOptions, MethodUsed};
-use crate::bitmap::Bitmap;
-use crate::clean::{clean, estimate_stroke_width, CleanReport};
-use crate::decode::{decode_image, to_gray};
-use crate::fit::{fit_curve, FitOptions};
-use crate::sample::{default_spacing, polyline_length, sample_polyline, simplification_tolerance};
-use crate::sketch::{connect, Method, SampledStroke, TracedCurve};
+use crate::crawl::strokes::{connect, Method, SampledStroke, TracedCurve};
+use crate::geometry::polyline::{
+    default_spacing, polyline_length, sample_polyline, simplification_tolerance,
+};
+use crate::output::fit::{fit_curve, FitOptions};
+use crate::output::svg::{to_svg, CurvePath, Drawing};
+use crate::raster::binarize::{binarize, BinarizeOptions, MethodUsed};
+use crate::raster::bitmap::Bitmap;
+use crate::raster::clean::{clean, estimate_stroke_width, CleanReport};
+use crate::raster::decode::{decode_image, to_gray};
+use crate::raster::thin::thin;
 use crate::strokes::{extract_strokes, Stroke};
-use crate::svg::{to_svg, CurvePath, Drawing};
-use crate::thin::thin;
 
 /// What to do differently from the defaults. `TraceOptions::default()` needs no tuning.
 #[derive(Clone, Debug, PartialEq)]
@@ -102,7 +104,7 @@ pub struct Stages {
 /// The result of tracing an image.
 #[derive(Clone, Debug)]
 pub struct Traced {
-    /// The vector drawing, ready for [`crate::svg::to_svg`].
+    /// The vector drawing, ready for [`crate::output::svg::to_svg`].
     pub drawing: Drawing,
     /// What the stages measured and how long they took.
     pub report: TraceReport,

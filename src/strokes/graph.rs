@@ -10,8 +10,8 @@ use std::collections::{HashMap, HashSet};
 
 use kurbo::Point;
 
-use crate::bitmap::{Bitmap, NEIGHBOUR_OFFSETS};
-use crate::sample::polyline_length;
+use crate::geometry::polyline::polyline_length;
+use crate::raster::bitmap::{Bitmap, NEIGHBOUR_OFFSETS};
 
 /// How one end of a [`Stroke`] ends.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -5,8 +5,8 @@ use image::{Rgb, RgbImage};
 use imageproc::drawing::{draw_filled_circle_mut, draw_line_segment_mut};
 use kurbo::Point;
 
-use crate::reconstruct::NeighbourGraph;
-use crate::render::render_svg;
+use crate::crawl::reconstruct::NeighbourGraph;
+use crate::output::render::render_svg;
 use crate::strokes::StrokeEnd;
 use crate::trace::Stages;
 

@@ -7,8 +7,8 @@ use kurbo::{Point, Rect};
 use rayon::prelude::*;
 use serde::Serialize;
 
-use crate::reconstruct::Reconstruction;
-use crate::svg::{CurvePath, Drawing};
+use crate::crawl::reconstruct::Reconstruction;
+use crate::output::svg::{CurvePath, Drawing};
 
 #[derive(Serialize)]
 struct JsonCurve<'a> {
@@ -122,7 +122,7 @@ pub fn to_drawing(points: &[Point], reconstruction: &Reconstruction, show_points
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::reconstruct::{Curve, MergedDuplicate};
+    use crate::crawl::reconstruct::{Curve, MergedDuplicate};
 
     #[test]
     fn json_names_curves_by_input_index_with_their_coordinates() {

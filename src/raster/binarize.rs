@@ -8,7 +8,7 @@
 
 use image::GrayImage;
 
-use crate::bitmap::Bitmap;
+use crate::raster::bitmap::Bitmap;
 
 /// How the threshold between ink and paper is chosen.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -352,7 +352,7 @@ fn dark_tail_level(histogram: &[u64; 256]) -> Option<u8> {
 const TAIL_SIGMAS: f64 = 6.0;
 
 /// See [`dark_tail_level`]: the fewest pixels that make ink rather than a speck of dust (which
-/// [`crate::clean`] would remove anyway): a stroke 16 px long and 2 px wide.
+/// [`crate::raster::clean`] would remove anyway): a stroke 16 px long and 2 px wide.
 const MIN_TAIL_PIXELS: u64 = 32;
 
 /// Otsu's two classes of a histogram.

@@ -7,8 +7,8 @@ use kurbo::{
     BezPath, CubicBez, Line, ParamCurve, ParamCurveDeriv, ParamCurveNearest, Point, Rect, Vec2,
 };
 
-use crate::sample::simplify_polyline;
-use crate::svg::CurvePath;
+use crate::geometry::polyline::simplify_polyline;
+use crate::output::svg::CurvePath;
 
 /// How curves are turned into paths.
 #[derive(Clone, Copy, Debug, PartialEq)]

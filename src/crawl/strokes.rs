@@ -14,8 +14,8 @@ use std::collections::HashMap;
 
 use kurbo::Point;
 
-use crate::reconstruct::{self, crawl, ChainEnds, NeighbourGraph};
-use crate::sample::polyline_length;
+use crate::crawl::reconstruct::{self, crawl, ChainEnds, NeighbourGraph};
+use crate::geometry::polyline::polyline_length;
 use crate::strokes::StrokeEnd;
 
 /// A stroke after sampling: what [`connect_strokes`] works on.

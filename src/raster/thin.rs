@@ -16,7 +16,7 @@
 //! can change their verdict for it, so each side keeps a queue of such pixels, fed by the
 //! neighbours of the pixels just deleted. The work follows the ink, not the page.
 
-use crate::bitmap::{Bitmap, NEIGHBOUR_OFFSETS};
+use crate::raster::bitmap::{Bitmap, NEIGHBOUR_OFFSETS};
 
 /// Whether a pixel with this neighbourhood (the bit layout of [`Bitmap::neighbourhood`]:
 /// bit k is neighbour k clockwise from north) is *simple*: its 8 neighbours hold exactly one
@@ -135,7 +135,7 @@ pub fn thin(mask: &Bitmap) -> Bitmap {
     let mut queues: [Vec<usize>; 4] = Default::default();
     for y in 1..=height {
         let row = y * stride;
-        crate::clean::for_each_run(&work[row + 1..row + 1 + width], true, |start, end| {
+        crate::raster::clean::for_each_run(&work[row + 1..row + 1 + width], true, |start, end| {
             for index in row + 1 + start..row + 1 + end {
                 for (side, queue) in queues.iter_mut().enumerate() {
                     if work[index.wrapping_add_signed(side_offsets[side])] & INK == 0 {
@@ -220,8 +220,8 @@ fn neighbourhood_at(work: &[u8], index: usize, offsets: &[isize; 8]) -> u8 {
 
 /// Invariant checkers for skeletons, used by the tests and available to callers' tests.
 pub mod checks {
-    use crate::bitmap::Bitmap;
-    use crate::clean::{count_components, count_holes, Connectivity};
+    use crate::raster::bitmap::Bitmap;
+    use crate::raster::clean::{count_components, count_holes, Connectivity};
 
     /// Whether every ink pixel of `skeleton` is ink in `mask` (same size required).
     pub fn is_subset(skeleton: &Bitmap, mask: &Bitmap) -> bool {
@@ -294,7 +294,7 @@ pub mod checks {
 mod tests {
     use super::checks::*;
     use super::*;
-    use crate::clean::tests::draw_line;
+    use crate::raster::clean::tests::draw_line;
 
     /// Thins and checks the invariants, with both pictures in the failure message.
     fn thin_checked(mask: &Bitmap) -> Bitmap {
@@ -600,9 +600,9 @@ mod tests {
     fn a_photographed_ring_comes_out_as_one_closed_loop() {
         // The raster stages in a chain: a ring 7 px wide, photographed under a side light with
         // noise, specks and pinholes, saved as PNG.
-        use crate::binarize::{binarize, BinarizeOptions, MethodUsed};
-        use crate::clean::{clean, estimate_stroke_width};
-        use crate::decode::{decode_image, to_gray};
+        use crate::raster::binarize::{binarize, BinarizeOptions, MethodUsed};
+        use crate::raster::clean::{clean, estimate_stroke_width};
+        use crate::raster::decode::{decode_image, to_gray};
         let mut random = SplitMix64(5);
         let (width, height) = (160u32, 120u32);
         let gray = image::GrayImage::from_fn(width, height, |x, y| {

@@ -7,7 +7,7 @@
 //! memory follow the number of runs, not of pixels: a 12 MP page of line art has a few hundred
 //! thousand runs, and no full-image buffer is allocated besides the mask itself.
 
-use crate::bitmap::Bitmap;
+use crate::raster::bitmap::Bitmap;
 
 /// What [`clean`] changed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]

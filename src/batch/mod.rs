@@ -1,0 +1,4 @@
+//! Batch tracing of image folders.
+mod engine;
+
+pub use engine::*;

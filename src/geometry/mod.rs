@@ -1,0 +1,2 @@
+//! Geometry shared by the stages.
+pub mod polyline;

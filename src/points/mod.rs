@@ -1,0 +1,3 @@
+//! Point files in, reconstructions out.
+pub mod read;
+pub mod write;

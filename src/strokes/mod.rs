@@ -1,0 +1,4 @@
+//! Skeleton → pen strokes.
+mod graph;
+
+pub use graph::*;
