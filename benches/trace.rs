@@ -16,13 +16,15 @@ use crawltrace::binarize::{binarize, BinarizeOptions};
 use crawltrace::bitmap::Bitmap;
 use crawltrace::clean::{clean, estimate_stroke_width};
 use crawltrace::decode::{decode_image, to_gray};
-use crawltrace::fit::FitOptions;
-use crawltrace::sample::{default_spacing, simplification_tolerance};
-use crawltrace::sketch::{connect, Method, SampledStroke, TracedCurve};
-use crawltrace::strokes::{extract_strokes, Stroke};
+use crawltrace::fit::{fit_paths, FitOptions};
+use crawltrace::geometry::Polyline;
+use crawltrace::sketch::{connect, Method};
+use crawltrace::strokes::{
+    default_spacing, extract_strokes, sample_strokes, simplification_tolerance, Stroke,
+};
 use crawltrace::svg::{to_svg, Drawing};
 use crawltrace::thin::thin;
-use crawltrace::trace::{fit_paths, sample_strokes, TraceOptions};
+use crawltrace::trace::TraceOptions;
 use divan::{black_box, Bencher};
 use image::{DynamicImage, GrayImage};
 
@@ -58,8 +60,8 @@ struct Pipeline {
     skeleton: Bitmap,
     strokes: Vec<Stroke>,
     spacing: f64,
-    sampled: Vec<SampledStroke>,
-    curves: Vec<TracedCurve>,
+    sampled: Vec<Stroke>,
+    curves: Vec<Polyline>,
     fit_options: FitOptions,
     drawing: Drawing,
 }
@@ -168,7 +170,7 @@ fn print_shares(page: Page) {
         p.bytes.len(),
         p.stroke_width,
         p.strokes.len(),
-        p.sampled.iter().map(|s| s.points.len()).sum::<usize>(),
+        p.sampled.iter().map(|s| s.line.points.len()).sum::<usize>(),
         p.drawing.paths.len(),
     );
     eprintln!("| stage | median ms | share |\n|---|---:|---:|");

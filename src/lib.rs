@@ -23,7 +23,14 @@ pub mod strokes;
 pub mod trace;
 
 // The paths of the flat layout, kept until the library API is curated.
-pub use crawl::{reconstruct, strokes as sketch};
+pub use crawl::strokes as sketch;
+/// The point-set crawl under its old path (interim, until the library API is curated).
+pub mod reconstruct {
+    pub use crate::crawl::algorithm::*;
+    pub use crate::crawl::neighbours::*;
+    pub use crate::crawl::reconstruct::*;
+    pub use crate::crawl::ReconstructError;
+}
 pub use geometry::polyline as sample;
 pub use output::{debug, fit, render, svg};
 pub use points::{read as pointfile, write as pointset};

@@ -6,21 +6,17 @@ use std::path::Path;
 use std::time::{Duration, Instant};
 
 use image::{DynamicImage, GrayImage};
-use kurbo::Point;
 
 use crate::batch::{describe_io, FileResult};
-use crate::crawl::strokes::{connect, Method, SampledStroke, TracedCurve};
-use crate::geometry::polyline::{
-    default_spacing, polyline_length, sample_polyline, simplification_tolerance,
-};
-use crate::output::fit::{fit_curve, FitOptions};
-use crate::output::svg::{to_svg, CurvePath, Drawing};
+use crate::crawl::strokes::{connect, Method};
+use crate::output::debug::Stages;
+use crate::output::fit::{fit_paths, FitOptions};
+use crate::output::svg::{to_svg, Drawing};
 use crate::raster::binarize::{binarize, BinarizeOptions, MethodUsed};
-use crate::raster::bitmap::Bitmap;
 use crate::raster::clean::{clean, estimate_stroke_width, CleanReport};
 use crate::raster::decode::{decode_image, to_gray};
 use crate::raster::thin::thin;
-use crate::strokes::{extract_strokes, Stroke};
+use crate::strokes::{default_spacing, extract_strokes, sample_strokes, simplification_tolerance};
 
 /// What to do differently from the defaults. `TraceOptions::default()` needs no tuning.
 #[derive(Clone, Debug, PartialEq)]
@@ -86,21 +82,6 @@ pub struct TraceReport {
     pub timings: Vec<(&'static str, Duration)>,
 }
 
-/// The intermediate results, kept when [`TraceOptions::keep_stages`] is set.
-#[derive(Clone, Debug)]
-pub struct Stages {
-    /// The gray image the pipeline started from.
-    pub gray: GrayImage,
-    /// Ink after thresholding and cleaning.
-    pub mask: Bitmap,
-    /// The 1-px skeleton.
-    pub skeleton: Bitmap,
-    /// The sampled strokes.
-    pub strokes: Vec<SampledStroke>,
-    /// The reconstructed polylines before fitting.
-    pub curves: Vec<TracedCurve>,
-}
-
 /// The result of tracing an image.
 #[derive(Clone, Debug)]
 pub struct Traced {
@@ -156,7 +137,7 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
         .unwrap_or_else(|| default_spacing(stroke_width));
     report.spacing = spacing;
     let sampled = sample_strokes(&strokes, spacing, simplification_tolerance(stroke_width));
-    report.samples = sampled.iter().map(|s| s.points.len()).sum();
+    report.samples = sampled.iter().map(|s| s.line.points.len()).sum();
     lap(&mut report, "strokes+sample");
 
     // DECISION: a curve shorter than two pen widths is a stray mark (a speck that survived
@@ -204,54 +185,6 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
         report,
         stages,
     })
-}
-
-/// Samples every stroke every `spacing` pixels after simplifying it within `tolerance` (the
-/// pipeline's "sample" stage, public so that benchmarks time exactly what [`trace`] runs).
-pub fn sample_strokes(strokes: &[Stroke], spacing: f64, tolerance: f64) -> Vec<SampledStroke> {
-    strokes
-        .iter()
-        .map(|stroke| {
-            // A loop needs at least four samples to be closable (the paper's "more than two
-            // edges"); small loops are sampled more densely.
-            let perimeter = polyline_length(&stroke.points, stroke.closed);
-            let stroke_spacing = if stroke.closed {
-                spacing.min(perimeter / 4.0)
-            } else {
-                spacing
-            };
-            SampledStroke {
-                points: sample_polyline(&stroke.points, stroke.closed, stroke_spacing, tolerance),
-                closed: stroke.closed,
-                ends: stroke.ends,
-            }
-        })
-        .collect()
-}
-
-/// Fits every curve into a path and puts the paths in the SVG's stable order (the pipeline's
-/// "fit" stage, public so that benchmarks time exactly what [`trace`] runs).
-pub fn fit_paths(curves: &[TracedCurve], options: &FitOptions) -> Vec<CurvePath> {
-    let mut paths: Vec<CurvePath> = curves
-        .iter()
-        .map(|curve| CurvePath {
-            path: fit_curve(&curve.points, curve.closed, options),
-            closed: curve.closed,
-        })
-        .collect();
-    // Stable order for the SVG: by the path's first point, top to bottom, then left to right.
-    paths.sort_by(|a, b| {
-        let key = |p: &CurvePath| {
-            p.path
-                .elements()
-                .first()
-                .and_then(|e| e.end_point())
-                .unwrap_or(Point::ZERO)
-        };
-        let (ka, kb) = (key(a), key(b));
-        ka.y.total_cmp(&kb.y).then(ka.x.total_cmp(&kb.x))
-    });
-    paths
 }
 
 /// Reads, decodes and traces one image file; the error is a one-line message for the user

@@ -1,28 +1,48 @@
-//! Samples pen strokes into points for the crawl: Ramer–Douglas–Peucker vertices (so corners and
-//! stroke ends are kept exactly), then extra points so that no two consecutive samples are
-//! farther apart than the spacing.
+//! Polylines: ordered chains of points, open or closed, with their length, Ramer–Douglas–Peucker
+//! simplification (U. Ramer, Computer Graphics and Image Processing 1(3), 1972; D. Douglas and
+//! T. Peucker, The Canadian Cartographer 10(2), 1973) and resampling at a spacing.
 
 use kurbo::Point;
 
-/// The sample spacing for a pen of `stroke_width` pixels.
-///
-/// DECISION: one and a half pen widths. Closer samples than about a pen width only resample the
-/// skeleton's pixel staircase; much sparser ones cut across curves whose radius is a few pen
-/// widths. The floor of 2 px keeps hairlines from producing a point per pixel.
-pub fn default_spacing(stroke_width: f64) -> f64 {
-    (1.5 * stroke_width).max(2.0)
+/// An ordered chain of points; a closed one joins its last point back to its first, which it does
+/// not repeat.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Polyline {
+    /// The points in order.
+    pub points: Vec<Point>,
+    /// Whether the last point joins the first.
+    pub closed: bool,
 }
 
-/// The deviation from the skeleton that simplification may introduce, for a pen of
-/// `stroke_width` pixels.
-///
-/// DECISION: a quarter of the pen width, at least 0.7 px: the skeleton of a hand-drawn stroke
-/// wobbles by about that much inside the ink, so finer detail is noise, not drawing.
-pub fn simplification_tolerance(stroke_width: f64) -> f64 {
-    (0.25 * stroke_width).max(0.7)
+impl Polyline {
+    /// A polyline through `points`, closed or open.
+    pub fn new(points: Vec<Point>, closed: bool) -> Self {
+        Self { points, closed }
+    }
+
+    /// The length, the closing segment included when closed.
+    pub fn length(&self) -> f64 {
+        polyline_length(&self.points, self.closed)
+    }
+
+    /// Ramer–Douglas–Peucker simplification: a subset of the points (always including both ends
+    /// of an open polyline) within `tolerance` of the original.
+    pub fn simplify(&self, tolerance: f64) -> Self {
+        Self::new(
+            simplify_polyline(&self.points, self.closed, tolerance),
+            self.closed,
+        )
+    }
+
+    /// The polyline with evenly spaced points inserted into every segment longer than
+    /// `spacing`, so that no two consecutive points are farther apart.
+    pub fn resample(&self, spacing: f64) -> Self {
+        Self::new(subdivide(&self.points, self.closed, spacing), self.closed)
+    }
 }
 
-/// The length of an ordered chain of points, including the closing segment if `closed`.
+/// The length of an ordered chain of points, including the closing segment if `closed`
+/// ([`Polyline::length`] for points held elsewhere).
 pub fn polyline_length(points: &[Point], closed: bool) -> f64 {
     let open: f64 = points.windows(2).map(|w| w[0].distance(w[1])).sum();
     match (closed, points.first(), points.last()) {
@@ -31,8 +51,7 @@ pub fn polyline_length(points: &[Point], closed: bool) -> f64 {
     }
 }
 
-/// Ramer–Douglas–Peucker simplification of an ordered chain of points: a subset of its vertices
-/// (always including the ends of an open chain) within `tolerance` of the original.
+/// [`Polyline::simplify`] on points held elsewhere.
 pub fn simplify_polyline(points: &[Point], closed: bool, tolerance: f64) -> Vec<Point> {
     if points.len() <= 2 {
         return points.to_vec();
@@ -44,16 +63,6 @@ pub fn simplify_polyline(points: &[Point], closed: bool, tolerance: f64) -> Vec<
         .filter(|(_, &k)| k)
         .map(|(&p, _)| p)
         .collect()
-}
-
-/// Samples an ordered chain of points. Open chains keep their two ends; closed chains are treated
-/// as a loop (the last point joins the first, which is not repeated).
-pub fn sample_polyline(points: &[Point], closed: bool, spacing: f64, tolerance: f64) -> Vec<Point> {
-    if points.len() <= 2 {
-        return subdivide(points, closed, spacing);
-    }
-    let vertices = simplify_polyline(points, closed, tolerance);
-    subdivide(&vertices, closed, spacing)
 }
 
 /// Which points Ramer–Douglas–Peucker keeps; a closed chain is split at the point farthest
@@ -148,6 +157,14 @@ fn subdivide(vertices: &[Point], closed: bool, spacing: f64) -> Vec<Point> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Simplified within `tolerance`, then resampled every `spacing`: how strokes are sampled.
+    fn sample_polyline(points: &[Point], closed: bool, spacing: f64, tolerance: f64) -> Vec<Point> {
+        Polyline::new(points.to_vec(), closed)
+            .simplify(tolerance)
+            .resample(spacing)
+            .points
+    }
 
     #[test]
     fn a_corner_and_both_ends_are_kept() {

@@ -1,14 +1,31 @@
 //! Pictures of what each stage saw, for `crawltrace trace --debug DIR`: ink mask, skeleton,
 //! sample points, the Delaunay triangulation with the chosen edges, and the result over the input.
 
-use image::{Rgb, RgbImage};
+use image::{GrayImage, Rgb, RgbImage};
 use imageproc::drawing::{draw_filled_circle_mut, draw_line_segment_mut};
 use kurbo::Point;
 
-use crate::crawl::reconstruct::NeighbourGraph;
+use crate::crawl::neighbours::NeighbourGraph;
+use crate::geometry::Polyline;
 use crate::output::render::render_svg;
-use crate::strokes::StrokeEnd;
-use crate::trace::Stages;
+use crate::raster::bitmap::Bitmap;
+use crate::strokes::{Stroke, StrokeEnd};
+
+/// The intermediate results of one trace, kept when [`crate::trace::TraceOptions::keep_stages`]
+/// is set: what the stage pictures draw.
+#[derive(Clone, Debug)]
+pub struct Stages {
+    /// The gray image the pipeline started from.
+    pub gray: GrayImage,
+    /// Ink after thresholding and cleaning.
+    pub mask: Bitmap,
+    /// The 1-px skeleton.
+    pub skeleton: Bitmap,
+    /// The sampled strokes.
+    pub strokes: Vec<Stroke>,
+    /// The reconstructed polylines before fitting.
+    pub curves: Vec<Polyline>,
+}
 
 const WHITE: Rgb<u8> = Rgb([255, 255, 255]);
 const INK: Rgb<u8> = Rgb([0, 0, 0]);
@@ -22,23 +39,38 @@ const CLOSED_CURVE: Rgb<u8> = Rgb([20, 90, 220]);
 /// The debug pictures, each with a file name (`1-mask.png` …), in pipeline order. `svg` is the
 /// traced result, drawn over the input in the last picture.
 pub fn debug_images(stages: &Stages, svg: &str) -> Vec<(&'static str, RgbImage)> {
-    let (width, height) = stages.gray.dimensions();
-    let faded = || {
-        RgbImage::from_fn(width, height, |x, y| {
-            let level = 200 + stages.gray.get_pixel(x, y).0[0] / 5;
-            Rgb([level, level, level])
-        })
-    };
+    vec![
+        ("1-mask.png", mask_picture(stages)),
+        ("2-skeleton.png", skeleton_picture(stages)),
+        ("3-samples.png", samples_picture(stages)),
+        ("4-delaunay.png", delaunay_picture(stages)),
+        ("5-result.png", result_picture(stages, svg)),
+    ]
+}
 
-    let mask = RgbImage::from_fn(width, height, |x, y| {
+/// The input, faded to light gray, as the background the other pictures draw on.
+fn faded(gray: &GrayImage) -> RgbImage {
+    RgbImage::from_fn(gray.width(), gray.height(), |x, y| {
+        let level = 200 + gray.get_pixel(x, y).0[0] / 5;
+        Rgb([level, level, level])
+    })
+}
+
+/// Ink after thresholding and cleaning, black on white.
+fn mask_picture(stages: &Stages) -> RgbImage {
+    let (width, height) = stages.gray.dimensions();
+    RgbImage::from_fn(width, height, |x, y| {
         if stages.mask.get(x as usize, y as usize) {
             INK
         } else {
             WHITE
         }
-    });
+    })
+}
 
-    let mut skeleton = faded();
+/// The 1-px skeleton in red over the input.
+fn skeleton_picture(stages: &Stages) -> RgbImage {
+    let mut skeleton = faded(&stages.gray);
     for y in 0..stages.skeleton.height() {
         for x in 0..stages.skeleton.width() {
             if stages.skeleton.get(x, y) {
@@ -46,42 +78,50 @@ pub fn debug_images(stages: &Stages, svg: &str) -> Vec<(&'static str, RgbImage)>
             }
         }
     }
+    skeleton
+}
 
-    let mut samples = faded();
+/// The samples of each stroke in a colour of its own; free pen ends orange, ends attached at a
+/// T-junction purple.
+fn samples_picture(stages: &Stages) -> RgbImage {
+    let mut samples = faded(&stages.gray);
     for (k, stroke) in stages.strokes.iter().enumerate() {
         let color = palette(k);
-        for pair in stroke.points.windows(2) {
+        let points = &stroke.line.points;
+        for pair in points.windows(2) {
             line(&mut samples, pair[0], pair[1], color);
         }
-        for &p in &stroke.points {
+        for &p in points {
             dot(&mut samples, p, 1, color);
         }
-        if !stroke.closed {
-            for (end, p) in stroke
-                .ends
-                .iter()
-                .zip([stroke.points.first(), stroke.points.last()])
-            {
-                let (Some(&p), color) = (
-                    p,
-                    match end {
-                        StrokeEnd::Free => FREE_END,
-                        StrokeEnd::Attached(_) => ATTACHED_END,
-                    },
-                ) else {
-                    continue;
-                };
-                dot(&mut samples, p, 3, color);
-            }
+        if stroke.line.closed {
+            continue;
+        }
+        for (end, p) in stroke.ends.iter().zip([points.first(), points.last()]) {
+            let (Some(&p), color) = (
+                p,
+                match end {
+                    StrokeEnd::Free => FREE_END,
+                    StrokeEnd::Attached(_) => ATTACHED_END,
+                },
+            ) else {
+                continue;
+            };
+            dot(&mut samples, p, 3, color);
         }
     }
+    samples
+}
 
-    let mut delaunay = faded();
+/// The Delaunay triangulation of all samples in gray, with the traced curves over it: closed
+/// ones blue, open ones red.
+fn delaunay_picture(stages: &Stages) -> RgbImage {
+    let mut delaunay = faded(&stages.gray);
     let positions: Vec<Point> = {
         let mut all: Vec<Point> = stages
             .strokes
             .iter()
-            .flat_map(|s| s.points.iter().copied())
+            .flat_map(|s| s.line.points.iter().copied())
             .collect();
         all.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
         all.dedup();
@@ -119,8 +159,13 @@ pub fn debug_images(stages: &Stages, svg: &str) -> Vec<(&'static str, RgbImage)>
             dot(&mut delaunay, p, 1, color);
         }
     }
+    delaunay
+}
 
-    let mut result = faded();
+/// The traced SVG rendered in blue over the input.
+fn result_picture(stages: &Stages, svg: &str) -> RgbImage {
+    let (width, height) = stages.gray.dimensions();
+    let mut result = faded(&stages.gray);
     if let Ok(rendered) = render_svg(&recolor(svg), 1.0) {
         for (x, y, pixel) in rendered.enumerate_pixels() {
             if x < width && y < height && pixel.0[0] < 250 {
@@ -138,14 +183,7 @@ pub fn debug_images(stages: &Stages, svg: &str) -> Vec<(&'static str, RgbImage)>
             }
         }
     }
-
-    vec![
-        ("1-mask.png", mask),
-        ("2-skeleton.png", skeleton),
-        ("3-samples.png", samples),
-        ("4-delaunay.png", delaunay),
-        ("5-result.png", result),
-    ]
+    result
 }
 
 /// The traced SVG with its stroke colour made pure blue, so coverage can be read off the red

@@ -8,7 +8,7 @@ use kurbo::{
 };
 
 use crate::geometry::polyline::simplify_polyline;
-use crate::output::svg::CurvePath;
+use crate::geometry::Polyline;
 
 /// How curves are turned into paths.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -19,14 +19,70 @@ pub struct FitOptions {
     pub tolerance: f64,
 }
 
+/// One fitted curve: the path that [`super::svg::Drawing`] holds one of per curve.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CurvePath {
+    /// The geometry: lines and cubic Béziers, ending in `ClosePath` when closed.
+    pub path: BezPath,
+    /// Whether the curve is closed.
+    pub closed: bool,
+}
+
+impl CurvePath {
+    /// A straight-segment path through `points`, closed back to the first one if `closed`.
+    pub fn polyline(points: &[Point], closed: bool) -> Self {
+        let mut path = BezPath::new();
+        for (i, &p) in points.iter().enumerate() {
+            if i == 0 {
+                path.move_to(p);
+            } else {
+                path.line_to(p);
+            }
+        }
+        if closed && points.len() > 2 {
+            path.close_path();
+        }
+        Self {
+            path,
+            closed: closed && points.len() > 2,
+        }
+    }
+}
+
+/// Fits every curve into a path and puts the paths in the SVG's stable order (the pipeline's
+/// "fit" stage).
+pub fn fit_paths(curves: &[Polyline], options: &FitOptions) -> Vec<CurvePath> {
+    let mut paths: Vec<CurvePath> = curves
+        .iter()
+        .map(|curve| CurvePath {
+            path: fit_curve(curve, options),
+            closed: curve.closed,
+        })
+        .collect();
+    // Stable order for the SVG: by the path's first point, top to bottom, then left to right.
+    paths.sort_by(|a, b| {
+        let key = |p: &CurvePath| {
+            p.path
+                .elements()
+                .first()
+                .and_then(|e| e.end_point())
+                .unwrap_or(Point::ZERO)
+        };
+        let (ka, kb) = (key(a), key(b));
+        ka.y.total_cmp(&kb.y).then(ka.x.total_cmp(&kb.x))
+    });
+    paths
+}
+
 /// DECISION: a vertex is a corner when the curve turns by at least this much there, measured both
 /// to its neighbours and to the samples two steps away. Gentle curves sampled every 1.5 pen widths
 /// turn by far less; one noisy sample may exceed it at one scale but rarely at both.
 const CORNER_TURN_DEGREES: f64 = 50.0;
 
-/// Turns an ordered chain of points into a path; closed chains end with `ClosePath`.
-pub fn fit_curve(points: &[Point], closed: bool, options: &FitOptions) -> BezPath {
-    let closed = closed && points.len() > 2;
+/// Turns a polyline into a path; closed polylines end with `ClosePath`.
+pub fn fit_curve(curve: &Polyline, options: &FitOptions) -> BezPath {
+    let points = &curve.points;
+    let closed = curve.closed && points.len() > 2;
     if !options.smooth || points.len() < 3 {
         let simplified = simplify_polyline(points, closed, options.tolerance);
         return CurvePath::polyline(&simplified, closed).path;
@@ -450,7 +506,7 @@ mod tests {
                 Point::new(50.0 + 30.0 * a.cos(), 50.0 + 30.0 * a.sin())
             })
             .collect();
-        let path = fit_curve(&points, true, &smooth());
+        let path = fit_curve(&Polyline::new(points.clone(), true), &smooth());
         assert!(matches!(path.elements().last(), Some(PathEl::ClosePath)));
         let cubics = path
             .elements()
@@ -473,7 +529,7 @@ mod tests {
                 points.push(Point::new(a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1)));
             }
         }
-        let path = fit_curve(&points, true, &smooth());
+        let path = fit_curve(&Polyline::new(points.clone(), true), &smooth());
         for (x, y) in corners {
             let corner = Point::new(x, y);
             let nearest = path
@@ -495,7 +551,7 @@ mod tests {
         let points: Vec<Point> = (0..30)
             .map(|i| Point::new(i as f64 * 3.0, 20.0 * (i as f64 * 0.2).sin()))
             .collect();
-        let path = fit_curve(&points, false, &smooth());
+        let path = fit_curve(&Polyline::new(points.clone(), false), &smooth());
         assert!(!matches!(path.elements().last(), Some(PathEl::ClosePath)));
         let first = path.elements()[0].end_point().unwrap();
         let last = path.elements().last().unwrap().end_point().unwrap();
@@ -530,8 +586,7 @@ mod tests {
             let closed = case % 2 == 0;
             let tolerance = [0.0, 0.1, 0.5, 1.75][case % 4];
             let path = fit_curve(
-                &points,
-                closed,
+                &Polyline::new(points.clone(), closed),
                 &FitOptions {
                     smooth: true,
                     tolerance,
@@ -587,7 +642,7 @@ mod tests {
             smooth: false,
             tolerance: 0.5,
         };
-        let path = fit_curve(&points, false, &options);
+        let path = fit_curve(&Polyline::new(points.clone(), false), &options);
         assert_eq!(path.elements().len(), 2, "{path:?}");
         assert!(path
             .elements()

@@ -6,6 +6,8 @@ use std::fmt::Write as _;
 
 use kurbo::{BezPath, PathEl, Point};
 
+pub use super::fit::CurvePath;
+
 /// Vector curves on a canvas, ready to be written as SVG.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Drawing {
@@ -24,36 +26,6 @@ pub struct Drawing {
     /// Points drawn as small blue dots over the curves (every input point of a point set, with
     /// `points --show-points`); empty otherwise.
     pub points: Vec<Point>,
-}
-
-/// One curve of a [`Drawing`].
-#[derive(Clone, Debug, PartialEq)]
-pub struct CurvePath {
-    /// The geometry: lines and cubic Béziers, ending in `ClosePath` when closed.
-    pub path: BezPath,
-    /// Whether the curve is closed.
-    pub closed: bool,
-}
-
-impl CurvePath {
-    /// A straight-segment path through `points`, closed back to the first one if `closed`.
-    pub fn polyline(points: &[Point], closed: bool) -> Self {
-        let mut path = BezPath::new();
-        for (i, &p) in points.iter().enumerate() {
-            if i == 0 {
-                path.move_to(p);
-            } else {
-                path.line_to(p);
-            }
-        }
-        if closed && points.len() > 2 {
-            path.close_path();
-        }
-        Self {
-            path,
-            closed: closed && points.len() > 2,
-        }
-    }
 }
 
 /// Formats a number with at most two decimals, no trailing zeros and no `-0`.

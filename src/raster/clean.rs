@@ -7,6 +7,7 @@
 //! memory follow the number of runs, not of pixels: a 12 MP page of line art has a few hundred
 //! thousand runs, and no full-image buffer is allocated besides the mask itself.
 
+use crate::geometry::UnionFind;
 use crate::raster::bitmap::Bitmap;
 
 /// What [`clean`] changed.
@@ -162,8 +163,8 @@ pub(crate) enum Connectivity {
 /// Connected components of the runs of one pixel value, by union–find over run indices (runs
 /// numbered row by row, left to right).
 pub(crate) struct RunLabels {
-    /// Union–find forest: the parent of each run; roots are their own parent.
-    parent: Vec<u32>,
+    /// The components: one set of runs each.
+    sets: UnionFind,
     /// At a root, the component's area in pixels; [`TOUCHES_BORDER`] for a background
     /// component that reaches the image border (never a hole).
     area: Vec<u32>,
@@ -184,7 +185,7 @@ impl RunLabels {
             Connectivity::Eight => 1,
         };
         let mut labels = Self {
-            parent: Vec::new(),
+            sets: UnionFind::default(),
             area: Vec::new(),
         };
         // (start, end, run index) of the previous and the current row.
@@ -199,10 +200,11 @@ impl RunLabels {
             current.clear();
             let mut first_candidate = 0;
             for_each_run(row, ink, |start, end| {
-                let index = u32::try_from(labels.parent.len())
+                let index = labels
+                    .sets
+                    .push()
                     .expect("fewer than 2³² runs (a bitmap under 8 gigapixels)");
                 let on_border = !ink && (y == 0 || y + 1 == height || start == 0 || end == width);
-                labels.parent.push(index);
                 labels.area.push(if on_border {
                     TOUCHES_BORDER
                 } else {
@@ -229,25 +231,15 @@ impl RunLabels {
         labels
     }
 
-    /// The root of run `run`, halving the path on the way.
-    fn find(&mut self, mut run: u32) -> u32 {
-        while self.parent[run as usize] != run {
-            let grandparent = self.parent[self.parent[run as usize] as usize];
-            self.parent[run as usize] = grandparent;
-            run = grandparent;
-        }
-        run
-    }
-
     /// Merges the components of two runs; the root with the lower index stays root, so roots are
     /// the first run of their component in scan order (deterministic).
     fn union(&mut self, a: u32, b: u32) {
-        let (a, b) = (self.find(a), self.find(b));
+        let (a, b) = (self.sets.find(a), self.sets.find(b));
         if a == b {
             return;
         }
         let (root, child) = (a.min(b), a.max(b));
-        self.parent[child as usize] = root;
+        self.sets.attach(child, root);
         self.area[root as usize] =
             self.area[root as usize].saturating_add(self.area[child as usize]);
     }
@@ -255,14 +247,14 @@ impl RunLabels {
     /// The area of the component of run `run` ([`TOUCHES_BORDER`] for a border background
     /// component).
     pub(crate) fn area(&mut self, run: usize) -> u32 {
-        let root = self.find(run as u32);
+        let root = self.sets.find(run as u32);
         self.area[root as usize]
     }
 
     /// Every component, as (root run, area).
     pub(crate) fn roots(&self) -> impl Iterator<Item = (u32, u32)> + '_ {
-        (0..self.parent.len() as u32)
-            .filter(|&run| self.parent[run as usize] == run)
+        (0..self.sets.len() as u32)
+            .filter(|&run| self.sets.is_root(run))
             .map(|run| (run, self.area[run as usize]))
     }
 }
