@@ -23,8 +23,9 @@ use std::hint::black_box;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 
+use crawltrace::batch::trace_file_to_svg;
 use crawltrace::batch::{discover_inputs, fnv1a_64, run_batch, BatchOptions, FileResult};
-use crawltrace::trace::{trace_file_to_svg, TraceOptions};
+use crawltrace::trace::TraceOptions;
 use divan::counter::ItemsCount;
 use divan::Bencher;
 use image::{DynamicImage, ImageFormat};

@@ -1,6 +1,6 @@
 //! crawltrace turns scanned skip-stroke line drawings and raw 2D point sets into clean vector
 //! curves, with the Crawl through Neighbors reconstruction (Parakkat & Muthuganapathy, 2016) at its
-//! heart. The pipeline and its conventions are described in `../shared/DESIGN.md`.
+//! heart. The pipeline and its conventions are described in `docs/design.md`.
 //!
 //! Images: [`trace()`] takes a decoded image ([`decode::decode_image`]) and returns a
 //! [`Drawing`], one path per drawn shape, which [`svg::to_svg`] writes.
@@ -15,6 +15,7 @@
 
 pub mod batch;
 pub mod crawl;
+pub mod files;
 pub mod geometry;
 pub mod output;
 pub mod points;

@@ -13,10 +13,12 @@ use std::process::ExitCode;
 
 use clap::Parser;
 use cli::{Cli, Command, MethodArg, PointsArgs, PointsFormat, RenderArgs, TraceArgs};
-use crawltrace::batch::{self, describe_io, write_atomically, BatchOptions};
+use crawltrace::batch::trace_file_to_svg;
+use crawltrace::batch::{self, BatchOptions};
 use crawltrace::binarize::{BinarizeOptions, ThresholdMethod};
+use crawltrace::files::{describe_io, write_atomically};
 use crawltrace::sketch::Method;
-use crawltrace::trace::{trace_file, trace_file_to_svg, TraceOptions};
+use crawltrace::trace::{trace_file, TraceOptions};
 use crawltrace::{debug, pointfile, pointset, reconstruct, render, svg};
 
 /// A failure to report as `error: <file>: <what>` with an exit code.

@@ -1,4 +1,4 @@
-//! The tracing pipeline of `../shared/DESIGN.md`: gray → binarize → clean → thin → strokes →
+//! The tracing pipeline of `docs/design.md`: gray → binarize → clean → thin → strokes →
 //! sample → reconstruct (the crawl) → fit → [`Drawing`]; every stage is a module of its own.
 
 use std::borrow::Cow;
@@ -7,12 +7,13 @@ use std::time::{Duration, Instant};
 
 use image::{DynamicImage, GrayImage};
 
-use crate::batch::{describe_io, FileResult};
 use crate::crawl::strokes::{connect, Method};
+use crate::files::describe_io;
 use crate::output::debug::Stages;
 use crate::output::fit::{fit_paths, FitOptions};
-use crate::output::svg::{to_svg, Drawing};
+use crate::output::svg::Drawing;
 use crate::raster::binarize::{binarize, BinarizeOptions, MethodUsed};
+use crate::raster::bitmap::Bitmap;
 use crate::raster::clean::{clean, estimate_stroke_width, CleanReport};
 use crate::raster::decode::{decode_image, to_gray};
 use crate::raster::thin::thin;
@@ -96,40 +97,11 @@ pub struct Traced {
 /// Traces a line drawing into one vector path per drawn shape.
 pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, TraceError> {
     let mut report = TraceReport::default();
-    let mut clock = Instant::now();
-    let mut lap = |report: &mut TraceReport, stage: &'static str| {
-        let now = Instant::now();
-        report.timings.push((stage, now - clock));
-        clock = now;
-    };
+    let mut watch = Stopwatch::start();
+    let raster = raster_stages(image, options, &mut report, &mut watch)?;
+    let stroke_width = raster.stroke_width;
 
-    // An 8-bit gray image is used as it is: copying it would cost a full image of memory.
-    let gray: Cow<'_, GrayImage> = match image {
-        DynamicImage::ImageLuma8(gray) => Cow::Borrowed(gray),
-        other => Cow::Owned(to_gray(other)),
-    };
-    lap(&mut report, "gray");
-    let binarized = binarize(&gray, &options.binarize);
-    let (width, height) = (f64::from(gray.width()), f64::from(gray.height()));
-    // Only --debug needs the gray image after thresholding; free it before the later stages.
-    let gray = options.keep_stages.then(|| gray.into_owned());
-    report.threshold = Some(binarized.method_used);
-    let mut mask = binarized.mask;
-    lap(&mut report, "binarize");
-    let stroke_width = estimate_stroke_width(&mask);
-    if stroke_width <= 0.0 {
-        return Err(TraceError::NoInk);
-    }
-    report.cleaned = clean(&mut mask, stroke_width);
-    report.stroke_width = stroke_width;
-    lap(&mut report, "clean");
-    if mask.count_ink() == 0 {
-        return Err(TraceError::NoInk);
-    }
-    let skeleton = thin(&mask);
-    lap(&mut report, "thin");
-
-    let strokes = extract_strokes(&skeleton, stroke_width);
+    let strokes = extract_strokes(&raster.skeleton, stroke_width);
     report.strokes = strokes.len();
     let spacing = options
         .spacing
@@ -138,7 +110,7 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
     report.spacing = spacing;
     let sampled = sample_strokes(&strokes, spacing, simplification_tolerance(stroke_width));
     report.samples = sampled.iter().map(|s| s.line.points.len()).sum();
-    lap(&mut report, "strokes+sample");
+    watch.lap(&mut report, "strokes+sample");
 
     // DECISION: a curve shorter than two pen widths is a stray mark (a speck that survived
     // cleaning, a blot), not a shape.
@@ -149,7 +121,7 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
         2.0 * stroke_width,
         0.5 * stroke_width,
     );
-    lap(&mut report, "reconstruct");
+    watch.lap(&mut report, "reconstruct");
 
     let fit_options = FitOptions {
         smooth: options.smooth,
@@ -159,11 +131,11 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
             .unwrap_or_else(|| (0.25 * stroke_width).max(0.5)),
     };
     let paths = fit_paths(&curves, &fit_options);
-    lap(&mut report, "fit");
+    watch.lap(&mut report, "fit");
 
     let drawing = Drawing {
-        width,
-        height,
+        width: raster.width,
+        height: raster.height,
         paths,
         stroke_width: options
             .stroke_width
@@ -173,10 +145,10 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
         dots: Vec::new(),
         points: Vec::new(),
     };
-    let stages = gray.map(|gray| Stages {
+    let stages = raster.gray.map(|gray| Stages {
         gray,
-        mask,
-        skeleton,
+        mask: raster.mask,
+        skeleton: raster.skeleton,
         strokes: sampled,
         curves,
     });
@@ -184,6 +156,83 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
         drawing,
         report,
         stages,
+    })
+}
+
+/// Measures the wall time of each stage into [`TraceReport::timings`].
+struct Stopwatch {
+    clock: Instant,
+}
+
+impl Stopwatch {
+    fn start() -> Self {
+        Self {
+            clock: Instant::now(),
+        }
+    }
+
+    /// Records the time since the last lap as the time of `stage`.
+    fn lap(&mut self, report: &mut TraceReport, stage: &'static str) {
+        let now = Instant::now();
+        report.timings.push((stage, now - self.clock));
+        self.clock = now;
+    }
+}
+
+/// What the raster stages leave for the vector ones.
+struct Raster {
+    /// The gray image, kept only for [`TraceOptions::keep_stages`].
+    gray: Option<GrayImage>,
+    /// The image size in pixels.
+    width: f64,
+    height: f64,
+    /// Ink after thresholding and cleaning.
+    mask: Bitmap,
+    /// The 1-px skeleton of the mask.
+    skeleton: Bitmap,
+    /// The measured pen width in pixels.
+    stroke_width: f64,
+}
+
+/// Gray → binarize → clean → thin. Fails when there is no ink to trace.
+fn raster_stages(
+    image: &DynamicImage,
+    options: &TraceOptions,
+    report: &mut TraceReport,
+    watch: &mut Stopwatch,
+) -> Result<Raster, TraceError> {
+    // An 8-bit gray image is used as it is: copying it would cost a full image of memory.
+    let gray: Cow<'_, GrayImage> = match image {
+        DynamicImage::ImageLuma8(gray) => Cow::Borrowed(gray),
+        other => Cow::Owned(to_gray(other)),
+    };
+    watch.lap(report, "gray");
+    let binarized = binarize(&gray, &options.binarize);
+    let (width, height) = (f64::from(gray.width()), f64::from(gray.height()));
+    // Only --debug needs the gray image after thresholding; free it before the later stages.
+    let gray = options.keep_stages.then(|| gray.into_owned());
+    report.threshold = Some(binarized.method_used);
+    let mut mask = binarized.mask;
+    watch.lap(report, "binarize");
+    let stroke_width = estimate_stroke_width(&mask);
+    if stroke_width <= 0.0 {
+        return Err(TraceError::NoInk);
+    }
+    report.cleaned = clean(&mut mask, stroke_width);
+    report.stroke_width = stroke_width;
+    watch.lap(report, "clean");
+    if mask.count_ink() == 0 {
+        return Err(TraceError::NoInk);
+    }
+    let skeleton = thin(&mask);
+    watch.lap(report, "thin");
+    Ok(Raster {
+        gray,
+        width,
+        height,
+        mask,
+        skeleton,
+        stroke_width,
     })
 }
 
@@ -200,17 +249,4 @@ pub fn trace_file(path: &Path, options: &TraceOptions) -> Result<Traced, String>
         other => DynamicImage::ImageLuma8(to_gray(&other)),
     };
     trace(&image, options).map_err(|error| error.to_string())
-}
-
-/// Traces one image file into an SVG document: the per-file work of `crawltrace trace` on a
-/// folder, for [`crate::batch::run_batch`]. Public so that benchmarks and other front ends run
-/// exactly what the command runs.
-pub fn trace_file_to_svg(path: &Path, options: &TraceOptions) -> Result<FileResult, String> {
-    let traced = trace_file(path, options)?;
-    let paths = &traced.drawing.paths;
-    Ok(FileResult {
-        svg: to_svg(&traced.drawing).into_bytes(),
-        curves: paths.len(),
-        closed_curves: paths.iter().filter(|path| path.closed).count(),
-    })
 }

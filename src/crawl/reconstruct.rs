@@ -70,9 +70,9 @@ pub fn reconstruct(points: &[Point]) -> Result<Reconstruction, ReconstructError>
 /// second-nearest neighbour.
 ///
 /// DECISION: "second-nearest neighbour" means among *all* points, as the paper's text says, not
-/// among Delaunay neighbours only (as DESIGN.md words it). With Delaunay neighbours only, any open
-/// arc whose two ends are neighbours on the convex hull (a parabola, a "C") closes, because the
-/// hull edge makes the far end the second Delaunay neighbour of an end vertex of degree two.
+/// among Delaunay neighbours only. With Delaunay neighbours only, any open arc whose two ends are
+/// neighbours on the convex hull (a parabola, a "C") closes, because the hull edge makes the far
+/// end the second Delaunay neighbour of an end vertex of degree two.
 /// The closing edge must still be a Delaunay edge, so every output edge is one.
 ///
 /// DECISION: ties count generously: the other extremity qualifies if it is no farther than the

@@ -1,5 +1,6 @@
 //! Geometry shared by the stages: [`Polyline`] (length, simplification, resampling) and
 //! [`UnionFind`].
+
 pub mod polyline;
 pub mod union_find;
 

@@ -1,4 +1,4 @@
-//! Writes a [`Drawing`] as SVG text, following the conventions of `../shared/DESIGN.md` ("SVG
+//! Writes a [`Drawing`] as SVG text, following the conventions of `docs/design.md` ("SVG
 //! conventions"): viewBox in pixels, one `<path>` per curve, `Z` on closed curves, at most two
 //! decimals, byte-identical output for identical input.
 

@@ -1,3 +1,5 @@
-//! Point files in, reconstructions out.
+//! Point sets on the command line: point files in ([`read`]), reconstructions out as JSON or as a
+//! drawing ([`write`]); the reconstruction itself is [`crate::crawl::reconstruct`].
+
 pub mod read;
 pub mod write;

@@ -1,5 +1,5 @@
 //! Point files: one `x y` point a line (spaces, tabs or a comma between), `#` comments, any line
-//! ending (`\n`, `\r\n`, old-Mac `\r`); the format of `../shared/DESIGN.md`, "Command line".
+//! ending (`\n`, `\r\n`, old-Mac `\r`); the format of `docs/design.md`, "Command line".
 
 use kurbo::Point;
 use rayon::prelude::*;

@@ -1,5 +1,5 @@
 //! Output of point-set reconstruction: the JSON format and the SVG drawing of
-//! `../shared/DESIGN.md` ("Command line"), for the `points` command.
+//! `docs/design.md` ("Command line"), for the `points` command.
 
 use std::io::{self, Write};
 

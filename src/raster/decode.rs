@@ -1,7 +1,7 @@
 //! Decoding: image file bytes → [`DynamicImage`] → 8-bit gray, with the `image` crate's decoders
 //! (format guessed from the content's magic bytes) and Rec. 709 luma weights.
 //!
-//! The first stage of the pipeline (see `DESIGN.md`, "The pipeline"). Two pure functions:
+//! The first stage of the pipeline (see `docs/design.md`, "The pipeline"). Two pure functions:
 //! [`decode_image`] never panics on any bytes and reports a one-line [`DecodeError`], and [`to_gray`]
 //! reduces every colour type the crate produces to the 8-bit luminance the binarizer reads.
 

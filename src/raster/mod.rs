@@ -1,4 +1,7 @@
-//! The raster stages: image bytes → gray → ink mask → cleaned mask → 1-px skeleton.
+//! The raster stages of the pipeline (`docs/design.md`, "The pipeline"): image bytes → gray
+//! ([`decode`]) → ink mask ([`binarize`]) → cleaned mask and pen width ([`clean`]) → 1-px skeleton
+//! ([`thin`]), all on the one-byte-a-pixel [`bitmap::Bitmap`].
+
 pub mod binarize;
 pub mod bitmap;
 pub mod clean;

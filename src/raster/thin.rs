@@ -117,95 +117,147 @@ pub fn thin(mask: &Bitmap) -> Bitmap {
     if width == 0 || height == 0 {
         return mask.clone();
     }
-    // A copy framed by one pixel of background, so that neighbours never need bounds checks.
-    // Bit 0 is ink; bits 1..=4 are the queue flags, kept in the same bytes so that no further
-    // image-sized buffer is needed.
-    let stride = width + 2;
-    let mut work = vec![0u8; stride * (height + 2)];
-    for (y, row) in mask.as_bytes().chunks_exact(width).enumerate() {
-        let start = (y + 1) * stride + 1;
-        for (cell, &pixel) in work[start..start + width].iter_mut().zip(row) {
-            *cell = u8::from(pixel != 0);
-        }
-    }
-    let offsets = NEIGHBOUR_OFFSETS.map(|(dx, dy)| dx + dy * stride as isize);
-    let side_offsets = SIDES.map(|k| offsets[k]);
-
-    // Every border pixel starts in the queue of each side it faces.
-    let mut queues: [Vec<usize>; 4] = Default::default();
-    for y in 1..=height {
-        let row = y * stride;
-        crate::raster::clean::for_each_run(&work[row + 1..row + 1 + width], true, |start, end| {
-            for index in row + 1 + start..row + 1 + end {
-                for (side, queue) in queues.iter_mut().enumerate() {
-                    if work[index.wrapping_add_signed(side_offsets[side])] & INK == 0 {
-                        queue.push(index);
-                    }
-                }
-            }
-        });
-    }
-    for (side, queue) in queues.iter().enumerate() {
-        for &index in queue {
-            work[index] |= queued(side);
-        }
-    }
-
+    let mut work = Work::framed(mask);
+    let mut queues = work.border_queues();
     let mut deletions = Vec::new();
     let mut spare = Vec::new();
     while queues.iter().any(|queue| !queue.is_empty()) {
         for side in 0..4 {
             // Decide on the state before this sub-iteration ...
             let candidates = std::mem::replace(&mut queues[side], std::mem::take(&mut spare));
-            deletions.clear();
-            for &index in &candidates {
-                work[index] &= !queued(side);
-                if work[index] & INK == 0 {
-                    continue;
-                }
-                let neighbourhood = neighbourhood_at(&work, index, &offsets);
-                let faces_side = neighbourhood & (1 << SIDES[side]) == 0;
-                let end_point = neighbourhood.count_ones() <= 1;
-                if faces_side && !end_point && is_simple(neighbourhood) {
-                    deletions.push(index);
-                }
-            }
+            work.find_deletions(side, &candidates, &mut deletions);
             spare = candidates;
             spare.clear();
-            // ... then delete all at once ...
-            for &index in &deletions {
-                work[index] &= !INK;
+            // ... then delete all at once, and queue the neighbours whose verdicts may change.
+            work.delete(&deletions, &mut queues);
+        }
+    }
+    work.unframed()
+}
+
+/// The image being thinned: a copy of the mask framed by one pixel of background, so that
+/// neighbours never need bounds checks. Bit 0 of a byte is ink ([`INK`]); bits 1..=4 are the
+/// queue flags ([`queued`]), kept in the same bytes so that no further image-sized buffer is
+/// needed.
+struct Work {
+    bytes: Vec<u8>,
+    width: usize,
+    height: usize,
+    /// The length of a framed row: `width + 2`.
+    stride: usize,
+    /// The index offsets of the 8 neighbours, in [`NEIGHBOUR_OFFSETS`] order.
+    offsets: [isize; 8],
+    /// The index offsets of the neighbour on each side, in [`SIDES`] order.
+    side_offsets: [isize; 4],
+}
+
+impl Work {
+    fn framed(mask: &Bitmap) -> Self {
+        let (width, height) = (mask.width(), mask.height());
+        let stride = width + 2;
+        let mut bytes = vec![0u8; stride * (height + 2)];
+        for (y, row) in mask.as_bytes().chunks_exact(width).enumerate() {
+            let start = (y + 1) * stride + 1;
+            for (cell, &pixel) in bytes[start..start + width].iter_mut().zip(row) {
+                *cell = u8::from(pixel != 0);
             }
-            // ... and queue the remaining neighbours, whose verdicts may have changed, for every
-            // side they now face.
-            for &index in &deletions {
-                for &offset in &offsets {
-                    let neighbour = index.wrapping_add_signed(offset);
-                    if work[neighbour] & INK == 0 {
-                        continue;
-                    }
-                    for (other_side, queue) in queues.iter_mut().enumerate() {
-                        let open = work[neighbour.wrapping_add_signed(side_offsets[other_side])]
-                            & INK
-                            == 0;
-                        if open && work[neighbour] & queued(other_side) == 0 {
-                            work[neighbour] |= queued(other_side);
-                            queue.push(neighbour);
+        }
+        let offsets = NEIGHBOUR_OFFSETS.map(|(dx, dy)| dx + dy * stride as isize);
+        Self {
+            bytes,
+            width,
+            height,
+            stride,
+            offsets,
+            side_offsets: SIDES.map(|k| offsets[k]),
+        }
+    }
+
+    /// Every border pixel in the queue of each side it faces, flagged as queued.
+    fn border_queues(&mut self) -> [Vec<usize>; 4] {
+        let (width, stride, side_offsets) = (self.width, self.stride, self.side_offsets);
+        let work = &mut self.bytes;
+        let mut queues: [Vec<usize>; 4] = Default::default();
+        for y in 1..=self.height {
+            let row = y * stride;
+            crate::raster::clean::for_each_run(
+                &work[row + 1..row + 1 + width],
+                true,
+                |start, end| {
+                    for index in row + 1 + start..row + 1 + end {
+                        for (side, queue) in queues.iter_mut().enumerate() {
+                            if work[index.wrapping_add_signed(side_offsets[side])] & INK == 0 {
+                                queue.push(index);
+                            }
                         }
+                    }
+                },
+            );
+        }
+        for (side, queue) in queues.iter().enumerate() {
+            for &index in queue {
+                work[index] |= queued(side);
+            }
+        }
+        queues
+    }
+
+    /// The candidates of sub-iteration `side` that are deleted: ink, facing that side, not an
+    /// end point, and simple. Unflags them as queued for that side.
+    fn find_deletions(&mut self, side: usize, candidates: &[usize], deletions: &mut Vec<usize>) {
+        deletions.clear();
+        for &index in candidates {
+            self.bytes[index] &= !queued(side);
+            if self.bytes[index] & INK == 0 {
+                continue;
+            }
+            let neighbourhood = neighbourhood_at(&self.bytes, index, &self.offsets);
+            let faces_side = neighbourhood & (1 << SIDES[side]) == 0;
+            let end_point = neighbourhood.count_ones() <= 1;
+            if faces_side && !end_point && is_simple(neighbourhood) {
+                deletions.push(index);
+            }
+        }
+    }
+
+    /// Deletes `deletions` together, then queues their remaining ink neighbours, whose verdicts
+    /// may have changed, for every side they now face.
+    fn delete(&mut self, deletions: &[usize], queues: &mut [Vec<usize>; 4]) {
+        let work = &mut self.bytes;
+        for &index in deletions {
+            work[index] &= !INK;
+        }
+        for &index in deletions {
+            for &offset in &self.offsets {
+                let neighbour = index.wrapping_add_signed(offset);
+                if work[neighbour] & INK == 0 {
+                    continue;
+                }
+                for (other_side, queue) in queues.iter_mut().enumerate() {
+                    let open = work[neighbour.wrapping_add_signed(self.side_offsets[other_side])]
+                        & INK
+                        == 0;
+                    if open && work[neighbour] & queued(other_side) == 0 {
+                        work[neighbour] |= queued(other_side);
+                        queue.push(neighbour);
                     }
                 }
             }
         }
     }
 
-    let mut skeleton = Bitmap::new(width, height);
-    for (y, row) in skeleton.as_bytes_mut().chunks_exact_mut(width).enumerate() {
-        let start = (y + 1) * stride + 1;
-        for (pixel, &cell) in row.iter_mut().zip(&work[start..start + width]) {
-            *pixel = cell & INK;
+    /// The ink without the frame and the flags.
+    fn unframed(&self) -> Bitmap {
+        let (width, stride) = (self.width, self.stride);
+        let mut skeleton = Bitmap::new(width, self.height);
+        for (y, row) in skeleton.as_bytes_mut().chunks_exact_mut(width).enumerate() {
+            let start = (y + 1) * stride + 1;
+            for (pixel, &cell) in row.iter_mut().zip(&self.bytes[start..start + width]) {
+                *pixel = cell & INK;
+            }
         }
+        skeleton
     }
-    skeleton
 }
 
 /// The neighbourhood bits of the work pixel at `index` (its frame keeps indices in bounds).
