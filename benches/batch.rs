@@ -256,7 +256,7 @@ fn run_batch_200_files_no_work(bencher: Bencher, jobs: usize) {
         discover_inputs(&[input.path().to_path_buf()], &options).expect("the inputs are found");
     bencher.counter(ItemsCount::new(FILES)).bench(|| {
         run_batch(&discovery, output.path(), &options, |_| {
-            Ok(FileResult {
+            Ok::<_, std::convert::Infallible>(FileResult {
                 svg: b"<svg xmlns=\"http://www.w3.org/2000/svg\"/>".to_vec(),
                 curves: 0,
                 closed_curves: 0,

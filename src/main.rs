@@ -21,16 +21,53 @@ use crawltrace::sketch::Method;
 use crawltrace::trace::{trace_file, TraceOptions};
 use crawltrace::{debug, pointfile, pointset, reconstruct, render, svg};
 
-/// A failure to report as `error: <file>: <what>` with an exit code.
+/// The exit status of the command.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Exit {
+    /// Everything asked for was done (or was up to date).
+    Success = 0,
+    /// Some inputs of a batch failed; the others were written.
+    SomeFailed = 1,
+    /// Nothing ran: bad usage, or an input that cannot be read.
+    Usage = 2,
+}
+
+impl Exit {
+    /// The status of a finished batch.
+    fn of_batch<E>(summary: &batch::BatchSummary<E>) -> Self {
+        if summary.failed > 0 {
+            Self::SomeFailed
+        } else {
+            Self::Success
+        }
+    }
+}
+
+impl From<Exit> for ExitCode {
+    fn from(exit: Exit) -> Self {
+        ExitCode::from(exit as u8)
+    }
+}
+
+/// A failure that stops the command, reported as `error: <file>: <what>` (or `error: <what>`
+/// when no one file is to blame) with [`Exit::Usage`].
 struct Failure {
-    file: String,
+    file: Option<PathBuf>,
     message: String,
 }
 
 impl Failure {
     fn new(file: impl AsRef<Path>, message: impl ToString) -> Self {
         Self {
-            file: file.as_ref().display().to_string(),
+            file: Some(file.as_ref().to_path_buf()),
+            message: message.to_string(),
+        }
+    }
+
+    /// A failure whose message names its files itself.
+    fn general(message: impl ToString) -> Self {
+        Self {
+            file: None,
             message: message.to_string(),
         }
     }
@@ -45,14 +82,13 @@ fn main() -> ExitCode {
         Command::Render(args) => run_render(args),
     };
     match result {
-        Ok(code) => code,
-        Err(failure) if failure.file.is_empty() => {
-            eprintln!("error: {}", failure.message);
-            ExitCode::from(2)
-        }
+        Ok(exit) => exit.into(),
         Err(failure) => {
-            eprintln!("error: {}: {}", failure.file, failure.message);
-            ExitCode::from(2)
+            match &failure.file {
+                Some(file) => eprintln!("error: {}: {}", file.display(), failure.message),
+                None => eprintln!("error: {}", failure.message),
+            }
+            Exit::Usage.into()
         }
     }
 }
@@ -111,7 +147,7 @@ fn save(path: &Path, bytes: &[u8]) -> Result<(), Failure> {
     write_atomically(path, bytes).map_err(|e| Failure::new(path, describe_io(&e)))
 }
 
-fn run_trace(args: TraceArgs) -> Result<ExitCode, Failure> {
+fn run_trace(args: TraceArgs) -> Result<Exit, Failure> {
     validate_trace_args(&args)?;
     let input = args.inputs[0].clone();
     let batch_mode =
@@ -165,11 +201,11 @@ fn run_trace(args: TraceArgs) -> Result<ExitCode, Failure> {
                 .unwrap_or_default(),
         );
     }
-    Ok(ExitCode::SUCCESS)
+    Ok(Exit::Success)
 }
 
 /// Traces folders or several images into an output folder with the batch engine.
-fn run_trace_batch(args: TraceArgs) -> Result<ExitCode, Failure> {
+fn run_trace_batch(args: TraceArgs) -> Result<Exit, Failure> {
     if args.debug.is_some() {
         return Err(Failure::new("--debug", "works with one image at a time"));
     }
@@ -206,19 +242,16 @@ fn run_trace_batch(args: TraceArgs) -> Result<ExitCode, Failure> {
         report: args.report.clone(),
     };
     let options = trace_options(&args);
-    let fail = |e: batch::BatchError| Failure {
-        file: String::new(),
-        message: e.to_string(),
-    };
+    let fail = Failure::general;
     let discovery = batch::discover_inputs(&args.inputs, &batch_options).map_err(fail)?;
     let summary = batch::run_batch(&discovery, &out_dir, &batch_options, |path| {
         trace_file_to_svg(path, &options)
     })
     .map_err(fail)?;
-    Ok(ExitCode::from(summary.exit_code()))
+    Ok(Exit::of_batch(&summary))
 }
 
-fn run_points(args: PointsArgs) -> Result<ExitCode, Failure> {
+fn run_points(args: PointsArgs) -> Result<Exit, Failure> {
     let from_stdin = args.input.as_os_str() == "-";
     let input_name = if from_stdin {
         PathBuf::from("<stdin>")
@@ -283,10 +316,10 @@ fn run_points(args: PointsArgs) -> Result<ExitCode, Failure> {
             .write_all(&text)
             .map_err(|e| Failure::new("<stdout>", e))?,
     }
-    Ok(ExitCode::SUCCESS)
+    Ok(Exit::Success)
 }
 
-fn run_render(args: RenderArgs) -> Result<ExitCode, Failure> {
+fn run_render(args: RenderArgs) -> Result<Exit, Failure> {
     let svg = fs::read(&args.input).map_err(|e| Failure::new(&args.input, describe_io(&e)))?;
     let svg = String::from_utf8(svg).map_err(|_| Failure::new(&args.input, "not UTF-8 text"))?;
     let image = render::render_svg(&svg, args.scale).map_err(|e| Failure::new(&args.input, e))?;
@@ -297,7 +330,7 @@ fn run_render(args: RenderArgs) -> Result<ExitCode, Failure> {
         .map_err(|e| Failure::new(&args.output, e))?;
     write_atomically(&args.output, &png)
         .map_err(|e| Failure::new(&args.output, describe_io(&e)))?;
-    Ok(ExitCode::SUCCESS)
+    Ok(Exit::Success)
 }
 
 fn has_extension(path: &Path, extension: &str) -> bool {
@@ -315,4 +348,25 @@ fn refuse_to_overwrite_input(output: &Path, inputs: &[&Path]) -> Result<(), Fail
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_batch_exits_with_one_only_when_a_file_failed() {
+        let mut summary: batch::BatchSummary = batch::BatchSummary {
+            done: 3,
+            skipped: 2,
+            ..batch::BatchSummary::default()
+        };
+        assert_eq!(Exit::of_batch(&summary), Exit::Success);
+        summary.failed = 1;
+        assert_eq!(Exit::of_batch(&summary), Exit::SomeFailed);
+        assert_eq!(
+            [Exit::Success, Exit::SomeFailed, Exit::Usage].map(|exit| exit as u8),
+            [0, 1, 2]
+        );
+    }
 }

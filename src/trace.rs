@@ -2,6 +2,7 @@
 //! sample → reconstruct (the crawl) → fit → [`Drawing`]; every stage is a module of its own.
 
 use std::borrow::Cow;
+use std::io;
 use std::path::Path;
 use std::time::{Duration, Instant};
 
@@ -15,7 +16,7 @@ use crate::output::svg::Drawing;
 use crate::raster::binarize::{binarize, BinarizeOptions, MethodUsed};
 use crate::raster::bitmap::Bitmap;
 use crate::raster::clean::{clean, estimate_stroke_width, CleanReport};
-use crate::raster::decode::{decode_image, to_gray};
+use crate::raster::decode::{decode_image, to_gray, DecodeError};
 use crate::raster::thin::thin;
 use crate::strokes::{default_spacing, extract_strokes, sample_strokes, simplification_tolerance};
 
@@ -236,11 +237,29 @@ fn raster_stages(
     })
 }
 
-/// Reads, decodes and traces one image file; the error is a one-line message for the user
-/// (without the file name).
-pub fn trace_file(path: &Path, options: &TraceOptions) -> Result<Traced, String> {
-    let bytes = std::fs::read(path).map_err(|error| describe_io(&error))?;
-    let image = decode_image(&bytes).map_err(|error| error.to_string())?;
+/// Why an image file could not be traced. Its text is a one-line message for a user, without
+/// the file name.
+#[derive(Debug, thiserror::Error)]
+pub enum TraceFileError {
+    /// The file could not be read.
+    #[error("{}", describe_io(.0))]
+    Read(#[source] io::Error),
+    /// The bytes are not an image this crate decodes.
+    #[error(transparent)]
+    Decode(#[from] DecodeError),
+    /// The image decoded but could not be traced (a blank page).
+    #[error(transparent)]
+    Trace(#[from] TraceError),
+}
+
+/// Reads, decodes and traces one image file.
+///
+/// # Errors
+/// [`TraceFileError::Read`] when the file cannot be read, [`TraceFileError::Decode`] when it is
+/// not an image this crate reads, [`TraceFileError::Trace`] when the image has no ink.
+pub fn trace_file(path: &Path, options: &TraceOptions) -> Result<Traced, TraceFileError> {
+    let bytes = std::fs::read(path).map_err(TraceFileError::Read)?;
+    let image = decode_image(&bytes)?;
     drop(bytes);
     // The trace starts by reducing the image to 8-bit gray; doing it here instead lets the
     // colour pixels (3 to 16 bytes each) go before the trace, not after it. Same result.
@@ -248,5 +267,5 @@ pub fn trace_file(path: &Path, options: &TraceOptions) -> Result<Traced, String>
         gray @ DynamicImage::ImageLuma8(_) => gray,
         other => DynamicImage::ImageLuma8(to_gray(&other)),
     };
-    trace(&image, options).map_err(|error| error.to_string())
+    Ok(trace(&image, options)?)
 }

@@ -6,6 +6,7 @@ use std::collections::{HashMap, HashSet};
 use std::fs;
 use std::io;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 use globset::{GlobBuilder, GlobMatcher};
 use walkdir::WalkDir;
@@ -33,7 +34,7 @@ pub fn is_image_path(path: &Path) -> bool {
 }
 
 /// One input of a batch.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug)]
 pub struct Input {
     /// The file as it can be opened: the folder given joined with `relative`, or the file given.
     pub source: PathBuf,
@@ -42,7 +43,7 @@ pub struct Input {
     pub relative: PathBuf,
     /// Set when the folder scan could not read this entry (a broken symbolic link, a subfolder
     /// without permission); it is then reported as failed without being processed.
-    pub unreadable: Option<String>,
+    pub unreadable: Option<Unreadable>,
     /// `source` with every symbolic link resolved, when that succeeded.
     canonical: Option<PathBuf>,
 }
@@ -54,8 +55,45 @@ impl Input {
     }
 }
 
+/// Why the folder scan could not read an entry (shared, so that the outcome and the input can
+/// both hold it).
+#[derive(Clone, Debug, thiserror::Error)]
+pub enum Unreadable {
+    /// A symbolic link to nothing.
+    #[error("broken symbolic link")]
+    BrokenLink,
+    /// A subfolder that cannot be listed.
+    #[error("cannot read this folder: {}", describe_walk(.0))]
+    Folder(#[source] Arc<walkdir::Error>),
+    /// Any other entry that cannot be reached.
+    #[error("{}", describe_walk(.0))]
+    Entry(#[source] Arc<walkdir::Error>),
+}
+
+/// Something the folder scan says that is not a failure.
+#[derive(Debug, thiserror::Error)]
+pub enum ScanWarning {
+    /// A symbolic link back to a folder being scanned; what is behind it is scanned through its
+    /// real place.
+    #[error("{}: symbolic link loop back to {}, not followed", link.display(), ancestor.display())]
+    LinkLoop {
+        /// The link.
+        link: PathBuf,
+        /// The folder it leads back to.
+        ancestor: PathBuf,
+    },
+}
+
+/// A walkdir error as [`describe_io`] words I/O errors, when it is one.
+fn describe_walk(error: &walkdir::Error) -> String {
+    match error.io_error() {
+        Some(io_error) => describe_io(io_error),
+        None => error.to_string(),
+    }
+}
+
 /// The inputs of a batch, found by [`discover_inputs`].
-#[derive(Clone, Debug, Default)]
+#[derive(Debug, Default)]
 pub struct Discovery {
     /// The inputs of the requested shard, sorted by relative path.
     pub inputs: Vec<Input>,
@@ -65,8 +103,8 @@ pub struct Discovery {
     pub excluded_by_glob: usize,
     /// Inputs that belong to other shards.
     pub in_other_shards: usize,
-    /// Things worth saying that are not failures, each `<path>: <what>` (symbolic link loops).
-    pub warnings: Vec<String>,
+    /// Things worth saying that are not failures.
+    pub warnings: Vec<ScanWarning>,
     /// Canonical paths of every input of every shard: no output may land on one of them.
     pub(super) protected: HashSet<PathBuf>,
 }
@@ -150,7 +188,7 @@ pub fn discover_inputs(
     Ok(discovery)
 }
 
-fn new_input(source: PathBuf, relative: PathBuf, unreadable: Option<String>) -> Input {
+fn new_input(source: PathBuf, relative: PathBuf, unreadable: Option<Unreadable>) -> Input {
     let canonical = fs::canonicalize(&source).ok();
     Input {
         source,
@@ -185,9 +223,9 @@ fn compile_glob(pattern: &str) -> Result<Filter, BatchError> {
     let glob = GlobBuilder::new(pattern)
         .literal_separator(true)
         .build()
-        .map_err(|error| BatchError::Glob {
+        .map_err(|source| BatchError::Glob {
             pattern: pattern.to_string(),
-            message: error.kind().to_string(),
+            source,
         })?;
     Ok(Filter {
         matcher: glob.compile_matcher(),
@@ -234,11 +272,10 @@ fn scan_folder(
                 let path = error.path().unwrap_or(root).to_path_buf();
                 if let Some(ancestor) = error.loop_ancestor() {
                     // Everything behind the link is scanned through its real place already.
-                    discovery.warnings.push(format!(
-                        "{}: symbolic link loop back to {}, not followed",
-                        path.display(),
-                        ancestor.display()
-                    ));
+                    discovery.warnings.push(ScanWarning::LinkLoop {
+                        link: path,
+                        ancestor: ancestor.to_path_buf(),
+                    });
                     continue;
                 }
                 let relative = relative_to(&path, root);
@@ -251,20 +288,18 @@ fn scan_folder(
                 if !is_folder && !wanted(&relative, discovery) {
                     continue;
                 }
-                let message = match error.io_error() {
-                    Some(io_error)
-                        if io_error.kind() == io::ErrorKind::NotFound
-                            && link_or_file.is_ok_and(|m| m.file_type().is_symlink()) =>
-                    {
-                        "broken symbolic link".to_string()
-                    }
-                    Some(io_error) if is_folder => {
-                        format!("cannot read this folder: {}", describe_io(io_error))
-                    }
-                    Some(io_error) => describe_io(io_error),
-                    None => error.to_string(),
+                let broken_link = error
+                    .io_error()
+                    .is_some_and(|io_error| io_error.kind() == io::ErrorKind::NotFound)
+                    && link_or_file.is_ok_and(|m| m.file_type().is_symlink());
+                let unreadable = if broken_link {
+                    Unreadable::BrokenLink
+                } else if is_folder && error.io_error().is_some() {
+                    Unreadable::Folder(Arc::new(error))
+                } else {
+                    Unreadable::Entry(Arc::new(error))
                 };
-                found.push(new_input(path, relative, Some(message)));
+                found.push(new_input(path, relative, Some(unreadable)));
             }
         }
     }

@@ -3,8 +3,8 @@
 //! never lets one failing file stop the others.
 
 use std::collections::HashSet;
+use std::fmt;
 use std::fs;
-use std::io;
 use std::panic::{self, AssertUnwindSafe};
 use std::path::{Component, Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -13,9 +13,9 @@ use rayon::prelude::*;
 
 use super::console::{failure_line, Console};
 use super::discover::{Discovery, Input};
-use super::report::{BatchSummary, FileOutcome, FileStatus};
-use super::{BatchError, BatchOptions, FileResult};
-use crate::files::{describe_io, parent_folder, write_atomically};
+use super::report::{BatchSummary, FileError, FileOutcome, FileStatus};
+use super::{BatchError, BatchOptions, FileResult, ReportProblem};
+use crate::files::{parent_folder, write_atomically};
 
 /// Runs `process` over the inputs of `discovery` on `options.jobs` threads and writes each result
 /// to `out_dir`, mirroring the relative paths (folders are created as needed).
@@ -31,14 +31,15 @@ use crate::files::{describe_io, parent_folder, write_atomically};
 /// folder does not exist (other than `out_dir`, which the run makes) or that would overwrite an
 /// input; (after the work) a report that cannot
 /// be written.
-pub fn run_batch<F>(
+pub fn run_batch<F, E>(
     discovery: &Discovery,
     out_dir: &Path,
     options: &BatchOptions,
     process: F,
-) -> Result<BatchSummary, BatchError>
+) -> Result<BatchSummary<E>, BatchError>
 where
-    F: Fn(&Path) -> Result<FileResult, String> + Sync,
+    F: Fn(&Path) -> Result<FileResult, E> + Sync,
+    E: fmt::Display + Send,
 {
     let started = Instant::now();
     if options.jobs == Some(0) {
@@ -47,17 +48,13 @@ where
     if let Some(report) = &options.report {
         check_report_path(report, out_dir, &discovery.protected)?;
     }
-    fs::create_dir_all(out_dir).map_err(|error| BatchError::OutputFolder {
+    fs::create_dir_all(out_dir).map_err(|source| BatchError::OutputFolder {
         path: out_dir.to_path_buf(),
-        message: match error.kind() {
-            io::ErrorKind::AlreadyExists => "a file is in the way".to_string(),
-            _ => describe_io(&error),
-        },
+        source,
     })?;
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(options.jobs.unwrap_or(0))
-        .build()
-        .map_err(|error| BatchError::ThreadPool(error.to_string()))?;
+        .build()?;
 
     let console = Console::new(discovery.inputs.len(), options.quiet);
     if !options.quiet {
@@ -66,14 +63,14 @@ where
         }
     }
     // An indexed parallel iterator collects in input order, whatever order the files finish in.
-    let outcomes: Vec<FileOutcome> = pool.install(|| {
+    let outcomes: Vec<FileOutcome<E>> = pool.install(|| {
         discovery
             .inputs
             .par_iter()
             .map(|input| {
                 let outcome = process_one(input, out_dir, options.force, discovery, &process);
-                if let FileStatus::Failed { message, .. } = &outcome.status {
-                    console.line(&failure_line(&outcome.source, message));
+                if let FileStatus::Failed { error, .. } = &outcome.status {
+                    console.line(&failure_line(&outcome.source, &error.to_string()));
                 }
                 console.advance();
                 outcome
@@ -82,7 +79,7 @@ where
     });
     console.finish();
 
-    let count = |wanted: fn(&FileStatus) -> bool| {
+    let count = |wanted: fn(&FileStatus<E>) -> bool| {
         outcomes
             .iter()
             .filter(|outcome| wanted(&outcome.status))
@@ -101,7 +98,7 @@ where
         write_atomically(report, summary.report_json_lines().as_bytes()).map_err(|error| {
             BatchError::Report {
                 path: report.clone(),
-                message: describe_io(&error),
+                problem: ReportProblem::Write(error),
             }
         })?;
     }
@@ -117,19 +114,19 @@ fn check_report_path(
     out_dir: &Path,
     protected: &HashSet<PathBuf>,
 ) -> Result<(), BatchError> {
-    let refuse = |message: &str| BatchError::Report {
+    let refuse = |problem: ReportProblem| BatchError::Report {
         path: report.to_path_buf(),
-        message: message.to_string(),
+        problem,
     };
     let folder = parent_folder(report);
     // The output folder is the natural place for the report, and the run creates it; a first
     // run must not refuse what every later run accepts.
     let in_out_dir = without_current_dir(folder).eq(without_current_dir(out_dir));
     if !folder.is_dir() && !in_out_dir {
-        return Err(refuse("its folder does not exist"));
+        return Err(refuse(ReportProblem::NoFolder));
     }
     if lands_on_protected(report, protected) {
-        return Err(refuse("refusing to overwrite an input"));
+        return Err(refuse(ReportProblem::OverwritesInput));
     }
     Ok(())
 }
@@ -150,21 +147,21 @@ fn lands_on_protected(path: &Path, protected: &HashSet<PathBuf>) -> bool {
     resolved.is_some_and(|resolved| protected.contains(&resolved))
 }
 
-fn process_one<F>(
+fn process_one<F, E>(
     input: &Input,
     out_dir: &Path,
     force: bool,
     discovery: &Discovery,
     process: &F,
-) -> FileOutcome
+) -> FileOutcome<E>
 where
-    F: Fn(&Path) -> Result<FileResult, String> + Sync,
+    F: Fn(&Path) -> Result<FileResult, E> + Sync,
 {
     let (output, status) = match &input.unreadable {
-        Some(message) => (
+        Some(unreadable) => (
             None,
             FileStatus::Failed {
-                message: message.clone(),
+                error: FileError::Unreadable(unreadable.clone()),
                 seconds: None,
             },
         ),
@@ -182,27 +179,25 @@ where
     }
 }
 
-fn trace_one<F>(
+fn trace_one<F, E>(
     input: &Input,
     output: &Path,
     force: bool,
     discovery: &Discovery,
     process: &F,
-) -> FileStatus
+) -> FileStatus<E>
 where
-    F: Fn(&Path) -> Result<FileResult, String> + Sync,
+    F: Fn(&Path) -> Result<FileResult, E> + Sync,
 {
-    let failed = |message: String, seconds: Option<f64>| FileStatus::Failed { message, seconds };
+    let failed = |error: FileError<E>, seconds: Option<f64>| FileStatus::Failed { error, seconds };
     // Checked before the up-to-date test: an output that *is* its input always looks up to date.
     if lands_on_protected(output, &discovery.protected) {
-        return failed(
-            format!("refusing to overwrite an input with {}", output.display()),
-            None,
-        );
+        let output = output.to_path_buf();
+        return failed(FileError::OverwritesInput { output }, None);
     }
     let input_modified = match fs::metadata(&input.source).and_then(|m| m.modified()) {
         Ok(modified) => modified,
-        Err(error) => return failed(describe_io(&error), None),
+        Err(error) => return failed(FileError::Input(error), None),
     };
     if !force {
         // Only a file is an output: a folder (or anything else) in its place is not up to date,
@@ -221,32 +216,24 @@ where
     // A bug in the processor on one odd file must not take the other thousands down with it.
     let result = match panic::catch_unwind(AssertUnwindSafe(|| process(&input.source))) {
         Ok(Ok(result)) => result,
-        Ok(Err(message)) => return failed(message, Some(seconds())),
+        Ok(Err(error)) => return failed(FileError::Process(error), Some(seconds())),
         Err(payload) => {
             let what = payload
                 .downcast_ref::<&str>()
                 .map(|text| text.to_string())
                 .or_else(|| payload.downcast_ref::<String>().cloned())
                 .unwrap_or_else(|| "unknown cause".to_string());
-            return failed(format!("internal error: {what}"), Some(seconds()));
+            return failed(FileError::Panic(what), Some(seconds()));
         }
     };
     let folder = parent_folder(output);
-    if let Err(error) = fs::create_dir_all(folder) {
-        return failed(
-            format!(
-                "cannot create the folder {}: {}",
-                folder.display(),
-                describe_io(&error)
-            ),
-            Some(seconds()),
-        );
+    if let Err(source) = fs::create_dir_all(folder) {
+        let folder = folder.to_path_buf();
+        return failed(FileError::CreateFolder { folder, source }, Some(seconds()));
     }
-    if let Err(error) = write_atomically(output, &result.svg) {
-        return failed(
-            format!("cannot write {}: {}", output.display(), describe_io(&error)),
-            Some(seconds()),
-        );
+    if let Err(source) = write_atomically(output, &result.svg) {
+        let output = output.to_path_buf();
+        return failed(FileError::Write { output, source }, Some(seconds()));
     }
     FileStatus::Done {
         curves: result.curves,

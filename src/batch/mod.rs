@@ -1,8 +1,9 @@
 //! Batch tracing of image folders: finds the inputs, maps each to its output path, runs a per-file
 //! processor over them in parallel, and reports (progress bar, error lines, summary, JSON Lines).
 //!
-//! The engine knows nothing about tracing: it takes any `Fn(&Path) -> Result<FileResult, String>`,
-//! so the real tracer and the test and benchmark fakes go through the same code.
+//! The engine knows nothing about tracing: it takes any `Fn(&Path) -> Result<FileResult, E>`
+//! and keeps each failure's error value, so the real tracer ([`trace_file_to_svg`]) and the test
+//! and benchmark fakes go through the same code.
 //!
 //! Rules it keeps (see `docs/design.md`, "Command line"):
 //! - the output of `x/y.png` under a folder input is `OUT/x/y.svg`; two inputs with the same output
@@ -23,14 +24,16 @@ mod shard;
 use std::io;
 use std::path::{Path, PathBuf};
 
-pub use discover::{discover_inputs, is_image_path, Discovery, Input, IMAGE_EXTENSIONS};
+pub use discover::{
+    discover_inputs, is_image_path, Discovery, Input, ScanWarning, Unreadable, IMAGE_EXTENSIONS,
+};
 pub use engine::run_batch;
-pub use report::{BatchSummary, FileOutcome, FileStatus};
+pub use report::{BatchSummary, FileError, FileOutcome, FileStatus};
 pub use shard::{fnv1a_64, Shard, ShardError};
 
 use crate::files::describe_io;
 use crate::output::svg::to_svg;
-use crate::trace::{trace_file, TraceOptions};
+use crate::trace::{trace_file, TraceFileError, TraceOptions};
 
 /// What the per-file processor returns for one image.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
@@ -78,12 +81,12 @@ pub enum BatchError {
         source: io::Error,
     },
     /// The glob does not parse.
-    #[error("--glob {pattern:?}: {message}")]
+    #[error("--glob {pattern:?}: {}", source.kind())]
     Glob {
         /// The pattern as given.
         pattern: String,
         /// What is wrong with it.
-        message: String,
+        source: globset::Error,
     },
     /// Two inputs would be written to the same output.
     #[error("{}: both {} and {} would be written to this output", output.display(), first.display(), second.display())]
@@ -100,29 +103,57 @@ pub enum BatchError {
     NoJobs,
     /// The worker threads could not be started.
     #[error("worker threads: {0}")]
-    ThreadPool(String),
+    ThreadPool(#[from] rayon::ThreadPoolBuildError),
     /// The output folder cannot be created.
-    #[error("{}: cannot create the output folder: {message}", path.display())]
+    #[error("{}: cannot create the output folder: {}", path.display(), describe_folder_error(source))]
     OutputFolder {
         /// The output folder.
         path: PathBuf,
         /// Why not.
-        message: String,
+        source: io::Error,
     },
     /// The report cannot be written.
-    #[error("{}: cannot write the report: {message}", path.display())]
+    #[error("{}: cannot write the report: {problem}", path.display())]
     Report {
         /// The report file.
         path: PathBuf,
         /// Why not.
-        message: String,
+        problem: ReportProblem,
     },
 }
 
+/// Why a batch's report cannot be written.
+#[derive(Debug, thiserror::Error)]
+pub enum ReportProblem {
+    /// The report's folder does not exist (and is not the output folder, which the run makes).
+    #[error("its folder does not exist")]
+    NoFolder,
+    /// The report would replace one of the batch's inputs.
+    #[error("refusing to overwrite an input")]
+    OverwritesInput,
+    /// Writing failed.
+    #[error("{}", describe_io(.0))]
+    Write(#[source] io::Error),
+}
+
+/// Why the output folder cannot be created, in a few words.
+fn describe_folder_error(error: &io::Error) -> String {
+    match error.kind() {
+        io::ErrorKind::AlreadyExists => "a file is in the way".to_string(),
+        _ => describe_io(error),
+    }
+}
+
 /// Traces one image file into an SVG document: the per-file work of `crawltrace trace` on a
-/// folder, for [`run_batch`]. Public so that benchmarks and other front ends run
-/// exactly what the command runs.
-pub fn trace_file_to_svg(path: &Path, options: &TraceOptions) -> Result<FileResult, String> {
+/// folder, for [`run_batch`]. Public so that benchmarks and other front ends run exactly what the
+/// command runs.
+///
+/// # Errors
+/// As [`trace_file`]: the file cannot be read, is not an image, or has no ink.
+pub fn trace_file_to_svg(
+    path: &Path,
+    options: &TraceOptions,
+) -> Result<FileResult, TraceFileError> {
     let traced = trace_file(path, options)?;
     let paths = &traced.drawing.paths;
     Ok(FileResult {

@@ -1,12 +1,17 @@
 //! What a batch did: each input's outcome, the counts, the summary line and the JSON Lines report.
 
 use std::fmt;
+use std::io;
 use std::path::PathBuf;
 use std::time::Duration;
 
-/// What happened to one input.
-#[derive(Clone, Debug, PartialEq)]
-pub enum FileStatus {
+use super::discover::Unreadable;
+use crate::files::describe_io;
+use crate::trace::TraceFileError;
+
+/// What happened to one input. `E` is the per-file processor's error.
+#[derive(Debug)]
+pub enum FileStatus<E = TraceFileError> {
     /// Traced and written.
     Done {
         /// Curves in the output.
@@ -20,16 +25,55 @@ pub enum FileStatus {
     Skipped,
     /// Not done; the batch went on.
     Failed {
-        /// Why, on one line.
-        message: String,
+        /// Why.
+        error: FileError<E>,
         /// Time spent processing it, when the processor ran.
         seconds: Option<f64>,
     },
 }
 
+/// Why one input of a batch failed. Its text is one line for a user, without the input's name.
+#[derive(Debug, thiserror::Error)]
+pub enum FileError<E = TraceFileError> {
+    /// The folder scan could not read the entry.
+    #[error(transparent)]
+    Unreadable(#[from] Unreadable),
+    /// The output would replace one of the batch's inputs.
+    #[error("refusing to overwrite an input with {}", output.display())]
+    OverwritesInput {
+        /// The output that was not written.
+        output: PathBuf,
+    },
+    /// The input's modification time could not be read.
+    #[error("{}", describe_io(.0))]
+    Input(#[source] io::Error),
+    /// The processor (the tracer) failed on the input.
+    #[error("{0}")]
+    Process(E),
+    /// The processor panicked; the message is the panic's.
+    #[error("internal error: {0}")]
+    Panic(String),
+    /// The output's folder could not be created.
+    #[error("cannot create the folder {}: {}", folder.display(), describe_io(source))]
+    CreateFolder {
+        /// The folder.
+        folder: PathBuf,
+        /// Why not.
+        source: io::Error,
+    },
+    /// The output could not be written.
+    #[error("cannot write {}: {}", output.display(), describe_io(source))]
+    Write {
+        /// The output.
+        output: PathBuf,
+        /// Why not.
+        source: io::Error,
+    },
+}
+
 /// One input and what happened to it.
-#[derive(Clone, Debug, PartialEq)]
-pub struct FileOutcome {
+#[derive(Debug)]
+pub struct FileOutcome<E = TraceFileError> {
     /// The input file.
     pub source: PathBuf,
     /// Its path relative to the folder given.
@@ -37,14 +81,15 @@ pub struct FileOutcome {
     /// Its output, `None` for an entry the folder scan could not read.
     pub output: Option<PathBuf>,
     /// What happened.
-    pub status: FileStatus,
+    pub status: FileStatus<E>,
 }
 
-/// The result of [`run_batch`].
-#[derive(Clone, Debug, Default)]
-pub struct BatchSummary {
-    /// One outcome per input, in the order of [`Discovery::inputs`] (sorted by relative path).
-    pub outcomes: Vec<FileOutcome>,
+/// The result of [`super::run_batch`].
+#[derive(Debug)]
+pub struct BatchSummary<E = TraceFileError> {
+    /// One outcome per input, in the order of [`super::Discovery::inputs`] (sorted by relative
+    /// path).
+    pub outcomes: Vec<FileOutcome<E>>,
     /// Inputs traced and written.
     pub done: usize,
     /// Inputs skipped because their output was up to date.
@@ -59,12 +104,21 @@ pub struct BatchSummary {
     pub elapsed: Duration,
 }
 
-impl BatchSummary {
-    /// The process exit status: 1 if any input failed, else 0.
-    pub fn exit_code(&self) -> u8 {
-        u8::from(self.failed > 0)
+impl<E> Default for BatchSummary<E> {
+    fn default() -> Self {
+        Self {
+            outcomes: Vec::new(),
+            done: 0,
+            skipped: 0,
+            failed: 0,
+            not_images: 0,
+            in_other_shards: 0,
+            elapsed: Duration::ZERO,
+        }
     }
+}
 
+impl<E: fmt::Display> BatchSummary<E> {
     /// The report: one JSON object a line per input, in input order, with the fields `path`,
     /// `output`, `status` (`done`, `skipped` or `failed`), `curves`, `closed_curves`, `seconds`
     /// and `error`; fields that do not apply are `null`.
@@ -84,8 +138,8 @@ impl BatchSummary {
                     None,
                 ),
                 FileStatus::Skipped => ("skipped", None, None, None, None),
-                FileStatus::Failed { message, seconds } => {
-                    ("failed", None, None, *seconds, Some(message.as_str()))
+                FileStatus::Failed { error, seconds } => {
+                    ("failed", None, None, *seconds, Some(error.to_string()))
                 }
             };
             let line = ReportLine {
@@ -107,7 +161,7 @@ impl BatchSummary {
     }
 }
 
-impl fmt::Display for BatchSummary {
+impl<E> fmt::Display for BatchSummary<E> {
     fn fmt(&self, formatter: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(
             formatter,
@@ -132,7 +186,7 @@ struct ReportLine<'a> {
     curves: Option<usize>,
     closed_curves: Option<usize>,
     seconds: Option<f64>,
-    error: Option<&'a str>,
+    error: Option<String>,
 }
 
 #[cfg(test)]
@@ -140,20 +194,33 @@ mod tests {
     use super::*;
 
     #[test]
-    fn exit_code_is_one_only_with_failures() {
-        let mut summary = BatchSummary {
-            done: 3,
-            skipped: 2,
+    fn a_failure_keeps_its_error_and_reports_its_text() {
+        let summary: BatchSummary<String> = BatchSummary {
+            outcomes: vec![FileOutcome {
+                source: PathBuf::from("in/a.png"),
+                relative: PathBuf::from("a.png"),
+                output: Some(PathBuf::from("out/a.svg")),
+                status: FileStatus::Failed {
+                    error: FileError::Process("bad drawing".to_string()),
+                    seconds: Some(0.5),
+                },
+            }],
+            failed: 1,
             ..BatchSummary::default()
         };
-        assert_eq!(summary.exit_code(), 0);
-        summary.failed = 1;
-        assert_eq!(summary.exit_code(), 1);
+        assert!(matches!(
+            &summary.outcomes[0].status,
+            FileStatus::Failed { error: FileError::Process(text), .. } if text == "bad drawing"
+        ));
+        assert_eq!(
+            summary.report_json_lines(),
+            "{\"path\":\"in/a.png\",\"output\":\"out/a.svg\",\"status\":\"failed\",\"curves\":null,\"closed_curves\":null,\"seconds\":0.5,\"error\":\"bad drawing\"}\n"
+        );
     }
 
     #[test]
     fn summary_line_counts_everything() {
-        let summary = BatchSummary {
+        let summary: BatchSummary = BatchSummary {
             done: 3,
             skipped: 2,
             failed: 1,
