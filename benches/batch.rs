@@ -5,10 +5,10 @@
 //! - with a CPU-bound fake processor (about 5 ms of hashing a file), which measures the engine
 //!   alone, and with a processor that does nothing (the engine's own cost per file).
 //!
-//! The allocator settings of the binary (`src/allocator.rs`) are applied as in `crawltrace`. What
+//! The allocator settings of the binary (`src/bin/crawltrace/allocator.rs`) are applied as in `crawltrace`. What
 //! they bring does not show here even without them: generating the drawings frees large blocks
 //! first, which raises glibc's adaptive thresholds before any timing. It shows on the binary
-//! (see `src/allocator.rs`).
+//! (see `src/bin/crawltrace/allocator.rs`).
 //!
 //! Run: `cargo bench --bench batch` (only the real tracer: `cargo bench --bench batch -- real`).
 //!
@@ -42,7 +42,7 @@ const DRAWING_SIDE: u32 = 1000;
 /// The generated drawings, made on first use and deleted when the benchmarks end.
 static DRAWINGS: Mutex<Option<tempfile::TempDir>> = Mutex::new(None);
 
-#[path = "../src/allocator.rs"]
+#[path = "../src/bin/crawltrace/allocator.rs"]
 mod allocator;
 
 fn main() {
