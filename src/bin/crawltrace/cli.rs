@@ -1,8 +1,13 @@
-//! Command-line types (clap derive) for the `crawltrace` binary; no behaviour lives here.
+//! Command-line types (clap derive) for the `crawltrace` binary, the checks of option values
+//! (clap value parsers), and the library options they make.
 
+use std::num::ParseFloatError;
 use std::path::PathBuf;
 
 use clap::{Parser, Subcommand, ValueEnum};
+use crawltrace::binarize::{BinarizeOptions, ThresholdMethod};
+use crawltrace::sketch::Method;
+use crawltrace::trace::TraceOptions;
 
 /// Turn scanned skip-stroke line drawings and 2D point sets into clean SVG curves.
 #[derive(Debug, Parser)]
@@ -89,7 +94,7 @@ pub struct TraceArgs {
     pub invert: bool,
 
     /// Sample spacing along strokes in pixels (default: 1.5 × the measured pen width).
-    #[arg(long, value_name = "PX", help_heading = "Reconstruction")]
+    #[arg(long, value_name = "PX", value_parser = positive_number, help_heading = "Reconstruction")]
     pub spacing: Option<f64>,
     /// How samples are connected: `strokes` (default) knows which samples the pen drew together;
     /// `points` is the paper's plain crawl on all samples.
@@ -104,13 +109,13 @@ pub struct TraceArgs {
     pub no_smooth: bool,
     /// Largest deviation of a path from the reconstructed curve, in pixels (default: a quarter of
     /// the pen width, at least 0.5).
-    #[arg(long, value_name = "TOL", help_heading = "Output")]
+    #[arg(long, value_name = "TOL", value_parser = zero_or_positive_number, help_heading = "Output")]
     pub simplify: Option<f64>,
     /// Stroke width of the SVG paths (default: the measured pen width).
-    #[arg(long, value_name = "PX", help_heading = "Output")]
+    #[arg(long, value_name = "PX", value_parser = positive_number, help_heading = "Output")]
     pub stroke_width: Option<f64>,
     /// Stroke colour of the SVG paths.
-    #[arg(long, default_value = "#000000", help_heading = "Output")]
+    #[arg(long, default_value = "#000000", value_parser = svg_colour, help_heading = "Output")]
     pub color: String,
     /// Write pictures of each stage (mask, skeleton, samples, triangulation, result) into DIR.
     #[arg(long, value_name = "DIR", help_heading = "Output")]
@@ -148,4 +153,136 @@ pub enum MethodArg {
     Strokes,
     /// The paper's crawl on the Delaunay triangulation of all samples.
     Points,
+}
+
+impl TraceArgs {
+    /// The library's options for these arguments.
+    pub fn trace_options(&self) -> TraceOptions {
+        TraceOptions {
+            binarize: BinarizeOptions {
+                method: match (self.threshold, self.adaptive) {
+                    (Some(level), _) => ThresholdMethod::Fixed(level),
+                    (None, true) => ThresholdMethod::Adaptive,
+                    (None, false) => ThresholdMethod::Auto,
+                },
+                invert: self.invert,
+            },
+            spacing: self.spacing,
+            smooth: !self.no_smooth,
+            simplify: self.simplify,
+            stroke_width: self.stroke_width,
+            color: self.color.clone(),
+            method: match self.method {
+                MethodArg::Strokes => Method::Strokes,
+                MethodArg::Points => Method::Points,
+            },
+            keep_stages: self.debug.is_some(),
+        }
+    }
+}
+
+/// An option value that parses but is out of range.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum OptionCheck {
+    /// Zero, negative, infinite or NaN where a size is wanted.
+    #[error("must be a positive number")]
+    NotPositive,
+    /// Negative, infinite or NaN where a tolerance is wanted.
+    #[error("must be zero or a positive number")]
+    Negative,
+    /// Empty, or a character that would break the SVG attribute.
+    #[error("must be an SVG colour such as black or #1a2b3c")]
+    NotAColour,
+}
+
+/// Why an option value was refused. `main` reports a failed [`OptionCheck`] as
+/// `error: <option>: <check>`, one line like every other error of the command; a value that is no
+/// number at all gets clap's usual message.
+#[derive(Debug, thiserror::Error)]
+pub enum ValueError {
+    /// Not a number.
+    #[error(transparent)]
+    NotANumber(#[from] ParseFloatError),
+    /// A number (or text) out of range.
+    #[error(transparent)]
+    Check(#[from] OptionCheck),
+}
+
+/// A finite number greater than zero (`--spacing`, `--stroke-width`).
+fn positive_number(text: &str) -> Result<f64, ValueError> {
+    let value: f64 = text.parse()?;
+    if value.is_finite() && value > 0.0 {
+        Ok(value)
+    } else {
+        Err(OptionCheck::NotPositive.into())
+    }
+}
+
+/// A finite number, zero or greater (`--simplify`).
+fn zero_or_positive_number(text: &str) -> Result<f64, ValueError> {
+    let value: f64 = text.parse()?;
+    if value.is_finite() && value >= 0.0 {
+        Ok(value)
+    } else {
+        Err(OptionCheck::Negative.into())
+    }
+}
+
+/// Anything that can stand in an SVG attribute as a colour (`--color`); the SVG renderer judges
+/// the colour itself.
+fn svg_colour(text: &str) -> Result<String, ValueError> {
+    if text.contains(['"', '<', '>', '&']) || text.trim().is_empty() {
+        Err(OptionCheck::NotAColour.into())
+    } else {
+        Ok(text.to_string())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sizes_must_be_positive_and_finite() {
+        assert_eq!(positive_number("2.5").ok(), Some(2.5));
+        for text in ["0", "-1", "inf", "NaN"] {
+            assert!(
+                matches!(
+                    positive_number(text),
+                    Err(ValueError::Check(OptionCheck::NotPositive))
+                ),
+                "{text}"
+            );
+        }
+        assert!(matches!(
+            positive_number("px"),
+            Err(ValueError::NotANumber(_))
+        ));
+        assert_eq!(zero_or_positive_number("0").ok(), Some(0.0));
+        assert!(matches!(
+            zero_or_positive_number("-0.5"),
+            Err(ValueError::Check(OptionCheck::Negative))
+        ));
+    }
+
+    #[test]
+    fn colours_must_fit_in_an_attribute() {
+        assert_eq!(svg_colour("#1a2b3c").ok().as_deref(), Some("#1a2b3c"));
+        assert_eq!(svg_colour("black").ok().as_deref(), Some("black"));
+        for text in ["", "  ", "red\"", "a<b", "a&b"] {
+            assert!(
+                matches!(
+                    svg_colour(text),
+                    Err(ValueError::Check(OptionCheck::NotAColour))
+                ),
+                "{text:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn the_command_line_definition_is_consistent() {
+        use clap::CommandFactory;
+        Cli::command().debug_assert();
+    }
 }
