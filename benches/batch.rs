@@ -5,10 +5,10 @@
 //! - with a CPU-bound fake processor (about 5 ms of hashing a file), which measures the engine
 //!   alone, and with a processor that does nothing (the engine's own cost per file).
 //!
-//! The allocator settings of the binary (`src/bin/crawltrace/allocator.rs`) are applied as in `crawltrace`. What
-//! they bring does not show here even without them: generating the drawings frees large blocks
-//! first, which raises glibc's adaptive thresholds before any timing. It shows on the binary
-//! (see `src/bin/crawltrace/allocator.rs`).
+//! The allocator settings of the binary (`src/bin/crawltrace/allocator.rs`) are applied as in
+//! `crawltrace`. What they bring does not show here even without them: generating the drawings
+//! frees large blocks first, which raises glibc's adaptive thresholds before any timing. It shows
+//! on the binary (see that file).
 //!
 //! Run: `cargo bench --bench batch` (only the real tracer: `cargo bench --bench batch -- real`).
 //!
@@ -23,9 +23,10 @@ use std::hint::black_box;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 
-use crawltrace::batch::trace_file_to_svg;
-use crawltrace::batch::{discover_inputs, fnv1a_64, run_batch, BatchOptions, FileResult};
-use crawltrace::trace::TraceOptions;
+use crawltrace::batch::{
+    discover_inputs, fnv1a_64, run_batch, trace_file_to_svg, BatchOptions, FileResult,
+};
+use crawltrace::TraceOptions;
 use divan::counter::ItemsCount;
 use divan::Bencher;
 use image::{DynamicImage, ImageFormat};
@@ -132,7 +133,7 @@ fn drawings() -> PathBuf {
         let mut random = SplitMix64(2016);
         for index in 0..FILES {
             let svg = drawing_svg(&mut random);
-            let rgba = crawltrace::render::render_svg(&svg, 1.0).expect("the drawing renders");
+            let rgba = crawltrace::render_svg(&svg, 1.0).expect("the drawing renders");
             let folder = root.path().join(format!("group-{}", index % 10));
             fs::create_dir_all(&folder).expect("a subfolder");
             DynamicImage::ImageRgba8(rgba)

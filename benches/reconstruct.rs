@@ -8,8 +8,11 @@
 
 use std::f64::consts::TAU;
 
-use crawltrace::reconstruct::{crawl, paper_closable, reconstruct, NeighbourGraph};
-use crawltrace::{pointfile, pointset, Point};
+use crawltrace::stages::crawl::algorithm::crawl;
+use crawltrace::stages::crawl::neighbours::NeighbourGraph;
+use crawltrace::stages::crawl::reconstruct::paper_closable;
+use crawltrace::stages::points::write as pointset;
+use crawltrace::{parse_points, reconstruct, Point};
 use divan::{black_box, Bencher};
 
 fn main() {
@@ -104,7 +107,7 @@ fn point_file(count: usize) -> Vec<u8> {
 #[divan::bench(args = SIZES, sample_count = 5, sample_size = 1)]
 fn parse_point_file(bencher: Bencher, count: usize) {
     let bytes = point_file(count);
-    bencher.bench(|| pointfile::parse_points(black_box(&bytes)).unwrap());
+    bencher.bench(|| parse_points(black_box(&bytes)).unwrap());
 }
 
 #[divan::bench(args = SIZES, sample_count = 5, sample_size = 1)]

@@ -12,19 +12,18 @@ use std::fmt;
 use std::sync::LazyLock;
 use std::time::{Duration, Instant};
 
-use crawltrace::binarize::{binarize, BinarizeOptions};
-use crawltrace::bitmap::Bitmap;
-use crawltrace::clean::{clean, estimate_stroke_width};
-use crawltrace::decode::{decode_image, to_gray};
-use crawltrace::fit::{fit_paths, FitOptions};
-use crawltrace::geometry::Polyline;
-use crawltrace::sketch::{connect, Method};
-use crawltrace::strokes::{
+use crawltrace::stages::binarize::{binarize, BinarizeOptions};
+use crawltrace::stages::bitmap::Bitmap;
+use crawltrace::stages::clean::{clean, estimate_stroke_width};
+use crawltrace::stages::crawl::strokes::{connect, Method};
+use crawltrace::stages::decode::{decode_image, to_gray};
+use crawltrace::stages::fit::{fit_paths, FitOptions};
+use crawltrace::stages::geometry::Polyline;
+use crawltrace::stages::strokes::{
     default_spacing, extract_strokes, sample_strokes, simplification_tolerance, Stroke,
 };
-use crawltrace::svg::{to_svg, Drawing};
-use crawltrace::thin::thin;
-use crawltrace::trace::TraceOptions;
+use crawltrace::stages::thin::thin;
+use crawltrace::{to_svg, Drawing, TraceOptions};
 use divan::{black_box, Bencher};
 use image::{DynamicImage, GrayImage};
 

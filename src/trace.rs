@@ -96,6 +96,33 @@ pub struct Traced {
 }
 
 /// Traces a line drawing into one vector path per drawn shape.
+///
+/// The image may be in any colour type; it is reduced to 8-bit gray first. With
+/// [`TraceOptions::default()`] nothing needs tuning: the threshold, the pen width, the sample
+/// spacing and the fitting tolerance are all measured on the image.
+///
+/// # Examples
+///
+/// ```
+/// use crawltrace::{to_svg, trace, TraceOptions};
+/// use image::{DynamicImage, GrayImage, Luma};
+///
+/// // A ring drawn 4 px wide on white paper.
+/// let ring = GrayImage::from_fn(200, 200, |x, y| {
+///     let radius = (f64::from(x) - 100.0).hypot(f64::from(y) - 100.0);
+///     Luma([if (radius - 60.0).abs() < 2.0 { 0 } else { 255 }])
+/// });
+/// let traced = trace(&DynamicImage::ImageLuma8(ring), &TraceOptions::default())?;
+/// assert_eq!(traced.drawing.paths.len(), 1);
+/// assert!(traced.drawing.paths[0].closed);
+/// assert!(to_svg(&traced.drawing).contains("Z\"/>"));
+/// # Ok::<(), crawltrace::TraceError>(())
+/// ```
+///
+/// # Errors
+///
+/// [`TraceError::NoInk`] when thresholding finds no ink: a blank page, or light ink on dark
+/// paper without [`BinarizeOptions::invert`].
 pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, TraceError> {
     let mut report = TraceReport::default();
     let mut watch = Stopwatch::start();
@@ -252,9 +279,28 @@ pub enum TraceFileError {
     Trace(#[from] TraceError),
 }
 
-/// Reads, decodes and traces one image file.
+/// Reads, decodes and traces one image file: [`trace()`] on the file's image. The format is
+/// recognised from the content, not the file name.
+///
+/// # Examples
+///
+/// ```
+/// use std::path::Path;
+///
+/// use crawltrace::{to_svg, trace_file, TraceFileError, TraceOptions};
+///
+/// let traced = trace_file(Path::new("samples/face-clean.png"), &TraceOptions::default())?;
+/// assert!(traced.drawing.paths.iter().any(|path| path.closed));
+/// let svg = to_svg(&traced.drawing);
+/// assert!(svg.starts_with("<svg"));
+///
+/// let missing = trace_file(Path::new("no-such-drawing.png"), &TraceOptions::default());
+/// assert!(matches!(missing, Err(TraceFileError::Read(_))));
+/// # Ok::<(), TraceFileError>(())
+/// ```
 ///
 /// # Errors
+///
 /// [`TraceFileError::Read`] when the file cannot be read, [`TraceFileError::Decode`] when it is
 /// not an image this crate reads, [`TraceFileError::Trace`] when the image has no ink.
 pub fn trace_file(path: &Path, options: &TraceOptions) -> Result<Traced, TraceFileError> {

@@ -9,8 +9,8 @@
 use std::collections::{BTreeMap, BTreeSet};
 use std::f64::consts::TAU;
 
-use crawltrace::reconstruct::{reconstruct, NeighbourGraph, Reconstruction};
-use crawltrace::Point;
+use crawltrace::stages::crawl::neighbours::NeighbourGraph;
+use crawltrace::{reconstruct, Point, Reconstruction};
 
 /// SplitMix64 (Steele, Lea & Flood 2014): tiny, fast, and good enough to draw test shapes.
 struct SplitMix64(u64);

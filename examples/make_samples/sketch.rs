@@ -3,7 +3,7 @@
 
 use std::fmt::Write as _;
 
-use crawltrace::svg::format_number;
+use crawltrace::stages::svg::format_number;
 use kurbo::Point;
 
 use crate::geometry::TrueCurve;

@@ -1,12 +1,17 @@
 //! The crawl: curve reconstruction by Crawl through Neighbors (Parakkat & Muthuganapathy,
 //! Computer Graphics Forum 35(5), 2016), on point sets and on sampled pen strokes.
+//!
+//! [`algorithm`] is the paper's crawl on any [`neighbours::NeighbourGraph`] (the Delaunay
+//! triangulation is [`neighbours::NeighbourGraph::delaunay`]); [`reconstruct`] runs it on a point
+//! set with the paper's closing rule; [`strokes`] runs it on sampled pen strokes, with bridges
+//! across the gaps between their free ends.
 
 pub mod algorithm;
-pub mod bridges;
+mod bridges;
 pub mod neighbours;
 pub mod reconstruct;
 pub mod strokes;
-pub mod triangulation;
+mod triangulation;
 
 /// Why a point set could not be reconstructed.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]

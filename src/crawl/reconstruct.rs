@@ -57,6 +57,32 @@ pub struct Reconstruction {
 /// position in the input. Open curves start at their lexicographically smaller end (by x, then y);
 /// closed curves start at their lexicographically smallest point and continue towards its smaller
 /// neighbour.
+///
+/// # Examples
+///
+/// ```
+/// use crawltrace::{reconstruct, Point};
+///
+/// // An open arc of 10 points and a stray point far from it.
+/// let mut points: Vec<Point> = (0..10)
+///     .map(|k| f64::from(k) * 0.3)
+///     .map(|angle| Point::new(10.0 * angle.cos(), 10.0 * angle.sin()))
+///     .collect();
+/// points.push(Point::new(40.0, 40.0));
+/// let reconstruction = reconstruct(&points)?;
+/// assert_eq!(reconstruction.curves.len(), 1);
+/// let arc = &reconstruction.curves[0];
+/// assert!(!arc.closed);
+/// assert_eq!(arc.indices.len(), 10);
+/// assert_eq!(reconstruction.outliers, vec![10]);
+/// # Ok::<(), crawltrace::ReconstructError>(())
+/// ```
+///
+/// # Errors
+///
+/// [`ReconstructError::NotFinite`] for a NaN or infinite coordinate, and
+/// [`ReconstructError::OutOfRange`] for one the triangulation cannot represent (its magnitude
+/// must lie between 1e-42 and 1e60, or be 0); both name the point's index.
 pub fn reconstruct(points: &[Point]) -> Result<Reconstruction, ReconstructError> {
     let canonical = CanonicalPoints::new(points)?;
     let graph = NeighbourGraph::delaunay(&canonical.positions)?;

@@ -25,6 +25,25 @@ pub enum RenderError {
 const MAX_SIDE: u32 = 30_000;
 
 /// Renders `svg` at `scale` (1 = the document's own pixel size) onto a white background.
+///
+/// # Examples
+///
+/// ```
+/// use crawltrace::render_svg;
+///
+/// let svg = r#"<svg xmlns="http://www.w3.org/2000/svg" width="20" height="10">
+///     <path d="M0 5 L20 5" stroke="black" stroke-width="2"/></svg>"#;
+/// let image = render_svg(svg, 2.0)?;
+/// assert_eq!(image.dimensions(), (40, 20));
+/// assert_eq!(image.get_pixel(20, 10).0, [0, 0, 0, 255]);
+/// assert_eq!(image.get_pixel(20, 1).0, [255, 255, 255, 255]);
+/// # Ok::<(), crawltrace::RenderError>(())
+/// ```
+///
+/// # Errors
+///
+/// [`RenderError::Parse`] when the text is not an SVG document usvg reads, and
+/// [`RenderError::Size`] when the raster would be empty or larger than 30 000 pixels a side.
 pub fn render_svg(svg: &str, scale: f32) -> Result<RgbaImage, RenderError> {
     let tree = usvg::Tree::from_str(svg, &usvg::Options::default())?;
     let size = tree.size();
@@ -59,15 +78,6 @@ pub fn render_svg(svg: &str, scale: f32) -> Result<RgbaImage, RenderError> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn renders_a_black_line_on_white() {
-        let svg = r#"<svg xmlns="http://www.w3.org/2000/svg" width="20" height="10" viewBox="0 0 20 10"><path d="M0 5 L20 5" stroke="black" stroke-width="2"/></svg>"#;
-        let image = render_svg(svg, 2.0).unwrap();
-        assert_eq!(image.dimensions(), (40, 20));
-        assert_eq!(image.get_pixel(20, 10).0, [0, 0, 0, 255]);
-        assert_eq!(image.get_pixel(20, 1).0, [255, 255, 255, 255]);
-    }
 
     #[test]
     fn rejects_garbage_and_absurd_scales() {

@@ -80,7 +80,33 @@ pub fn path_data(path: &BezPath) -> String {
     d
 }
 
-/// Writes `drawing` as a standalone SVG document.
+/// Writes `drawing` as a standalone SVG document, following the conventions of `docs/design.md`
+/// ("SVG conventions"): the canvas in pixels, one `<path>` per curve, `Z` on closed ones,
+/// coordinates with at most two decimals; the same drawing always gives the same bytes.
+///
+/// # Examples
+///
+/// ```
+/// use crawltrace::{to_svg, CurvePath, Drawing, Point};
+///
+/// let triangle = [Point::new(10.5, 10.5), Point::new(50.5, 10.5), Point::new(30.5, 40.5)];
+/// let drawing = Drawing {
+///     width: 64.0,
+///     height: 48.0,
+///     paths: vec![CurvePath::polyline(&triangle, true)],
+///     stroke_width: 2.0,
+///     color: "black".into(),
+///     dots: Vec::new(),
+///     points: Vec::new(),
+/// };
+/// let svg = to_svg(&drawing);
+/// assert!(svg.contains(r#"viewBox="0 0 64 48""#));
+/// assert!(svg.contains(r#"<path d="M10.5 10.5 L50.5 10.5 L30.5 40.5 Z"/>"#));
+/// ```
+///
+/// # Errors
+///
+/// None: every drawing can be written (the text is built in memory).
 pub fn to_svg(drawing: &Drawing) -> String {
     let width = format_number(drawing.width);
     let height = format_number(drawing.height);

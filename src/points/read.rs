@@ -44,6 +44,27 @@ pub struct PointFile {
 ///
 /// Large files are parsed in pieces on all cores; the result, errors included, is the same as
 /// parsing line by line.
+///
+/// # Examples
+///
+/// ```
+/// use crawltrace::{parse_points, Point, PointFileError};
+///
+/// let file = parse_points(b"x,y\n0 0\n# a comment\n1.5\t2 ignored\n")?;
+/// assert_eq!(file.points, vec![Point::new(0.0, 0.0), Point::new(1.5, 2.0)]);
+/// assert_eq!(file.lines, vec![2, 4]);
+/// assert_eq!(file.header_line, Some(1));
+///
+/// let error = parse_points(b"0 0\n1 one\n").unwrap_err();
+/// assert_eq!(error.to_string(), "line 2: expected two numbers `x y`, found \"1 one\"");
+/// # Ok::<(), PointFileError>(())
+/// ```
+///
+/// # Errors
+///
+/// [`PointFileError::NotAPoint`] for a line (other than a leading header) that does not start
+/// with two numbers, and [`PointFileError::NotFinite`] for a coordinate that is not a finite
+/// number; both give the line number.
 pub fn parse_points(bytes: &[u8]) -> Result<PointFile, PointFileError> {
     parse_in_pieces(bytes, PIECE_SIZE)
 }

@@ -5,9 +5,7 @@ use std::num::ParseFloatError;
 use std::path::PathBuf;
 
 use clap::{Parser, Subcommand, ValueEnum};
-use crawltrace::binarize::{BinarizeOptions, ThresholdMethod};
-use crawltrace::sketch::Method;
-use crawltrace::trace::TraceOptions;
+use crawltrace::{BinarizeOptions, Method, ThresholdMethod, TraceOptions};
 
 /// Turn scanned skip-stroke line drawings and 2D point sets into clean SVG curves.
 #[derive(Debug, Parser)]

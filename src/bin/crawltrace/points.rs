@@ -5,10 +5,8 @@ use std::io::{self, Read};
 use std::path::{Path, PathBuf};
 
 use crawltrace::files::describe_io;
-use crawltrace::pointfile::{parse_points, PointFile};
-use crawltrace::pointset::{to_drawing, write_json};
-use crawltrace::reconstruct::{reconstruct, ReconstructError, Reconstruction};
-use crawltrace::svg::to_svg;
+use crawltrace::stages::points::write::{to_drawing, write_json};
+use crawltrace::{parse_points, reconstruct, to_svg, PointFile, ReconstructError, Reconstruction};
 
 use crate::cli::{PointsArgs, PointsFormat};
 use crate::exit::{Exit, Failure};

@@ -3,7 +3,7 @@
 use std::fs;
 
 use crawltrace::files::describe_io;
-use crawltrace::render::render_svg;
+use crawltrace::render_svg;
 
 use crate::cli::RenderArgs;
 use crate::exit::{Exit, Failure};

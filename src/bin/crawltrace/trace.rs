@@ -5,10 +5,9 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use crawltrace::batch::{self, trace_file_to_svg, BatchOptions};
-use crawltrace::debug::debug_images;
 use crawltrace::files::describe_io;
-use crawltrace::svg::to_svg;
-use crawltrace::trace::{trace_file, TraceOptions, Traced};
+use crawltrace::stages::debug::debug_images;
+use crawltrace::{to_svg, trace_file, TraceOptions, Traced};
 
 use crate::cli::TraceArgs;
 use crate::exit::{Exit, Failure};
