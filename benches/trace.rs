@@ -15,9 +15,9 @@ use std::time::{Duration, Instant};
 use crawltrace::stages::binarize::{binarize, BinarizeOptions};
 use crawltrace::stages::bitmap::Bitmap;
 use crawltrace::stages::clean::{clean, estimate_stroke_width};
-use crawltrace::stages::crawl::strokes::{connect, Method};
+use crawltrace::stages::crawl::strokes::{connect, end_extension, minimum_curve_length, Method};
 use crawltrace::stages::decode::{decode_image, to_gray};
-use crawltrace::stages::fit::{fit_paths, FitOptions};
+use crawltrace::stages::fit::{default_tolerance, fit_paths, FitOptions};
 use crawltrace::stages::geometry::Polyline;
 use crawltrace::stages::strokes::{
     default_spacing, extract_strokes, sample_strokes, simplification_tolerance, Stroke,
@@ -81,12 +81,12 @@ impl Pipeline {
             &sampled,
             Method::Strokes,
             spacing,
-            2.0 * stroke_width,
-            0.5 * stroke_width,
+            minimum_curve_length(stroke_width),
+            end_extension(stroke_width),
         );
         let fit_options = FitOptions {
             smooth: true,
-            tolerance: (0.25 * stroke_width).max(0.5),
+            tolerance: default_tolerance(stroke_width),
         };
         let traced = crawltrace::trace(&image, &TraceOptions::default()).expect("the page traces");
         let drawing = traced.drawing;
@@ -257,8 +257,8 @@ fn stage_7_reconstruct(bencher: Bencher, page: Page) {
             black_box(&p.sampled),
             Method::Strokes,
             p.spacing,
-            2.0 * p.stroke_width,
-            0.5 * p.stroke_width,
+            minimum_curve_length(p.stroke_width),
+            end_extension(p.stroke_width),
         )
     });
 }

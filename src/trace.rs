@@ -8,10 +8,10 @@ use std::time::{Duration, Instant};
 
 use image::{DynamicImage, GrayImage};
 
-use crate::crawl::strokes::{connect, Method};
+use crate::crawl::strokes::{connect, end_extension, minimum_curve_length, Method};
 use crate::files::describe_io;
 use crate::output::debug::Stages;
-use crate::output::fit::{fit_paths, FitOptions};
+use crate::output::fit::{default_tolerance, fit_paths, FitOptions};
 use crate::output::svg::Drawing;
 use crate::raster::binarize::{binarize, BinarizeOptions, MethodUsed};
 use crate::raster::bitmap::Bitmap;
@@ -140,14 +140,12 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
     report.samples = sampled.iter().map(|s| s.line.points.len()).sum();
     watch.lap(&mut report, "strokes+sample");
 
-    // DECISION: a curve shorter than two pen widths is a stray mark (a speck that survived
-    // cleaning, a blot), not a shape.
     let curves = connect(
         &sampled,
         options.method,
         spacing,
-        2.0 * stroke_width,
-        0.5 * stroke_width,
+        minimum_curve_length(stroke_width),
+        end_extension(stroke_width),
     );
     watch.lap(&mut report, "reconstruct");
 
@@ -156,7 +154,7 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
         tolerance: options
             .simplify
             .filter(|t| t.is_finite() && *t >= 0.0)
-            .unwrap_or_else(|| (0.25 * stroke_width).max(0.5)),
+            .unwrap_or_else(|| default_tolerance(stroke_width)),
     };
     let paths = fit_paths(&curves, &fit_options);
     watch.lap(&mut report, "fit");

@@ -10,6 +10,7 @@ use super::neighbours::NeighbourGraph;
 use super::strokes::StrokeVertices;
 use crate::geometry::polyline::polyline_length;
 use crate::geometry::UnionFind;
+use crate::strokes::MIN_LOOP_SAMPLES;
 
 /// A free stroke end: a vertex and which end of which stroke it is.
 #[derive(Clone, Copy, Debug)]
@@ -35,6 +36,23 @@ type Candidate = (f64, f64, u32, u32);
 /// bridges much longer than the typical one join things the person drew apart (two eyebrows, the
 /// corners of an open mouth). The clamp keeps the rule sane when almost all ends are true open
 /// ends (a drawing in continuous strokes) or when there is no gap at all.
+/// DECISION: a bridge that closes a loop may be at most this share of the loop (bridge
+/// included); see [`match_gap_bridges`].
+const LOOP_GAP_MAX_SHARE: f64 = 0.25;
+
+/// The drawing's typical gap is clamped to this range, in sample spacings, so that the bridge
+/// limit stays sane with almost no gaps or no true open ends.
+const TYPICAL_GAP_MIN_IN_SPACINGS: f64 = 1.0;
+/// See [`TYPICAL_GAP_MIN_IN_SPACINGS`].
+const TYPICAL_GAP_MAX_IN_SPACINGS: f64 = 3.0;
+
+/// DECISION: a bridge may be at most this many typical gaps long; see [`match_gap_bridges`].
+const BRIDGE_MAX_IN_TYPICAL_GAPS: f64 = 2.0;
+
+/// A stroke may be bridged to itself only with at least this many samples (the paper's "more
+/// than two edges" before a chain closes).
+const MIN_SELF_BRIDGED_SAMPLES: usize = MIN_LOOP_SAMPLES;
+
 pub(super) fn match_gap_bridges(
     vertices: &StrokeVertices,
     delaunay: &NeighbourGraph,
@@ -62,7 +80,8 @@ pub(super) fn match_gap_bridges(
             // quarter of its length. A skip-stroke gap is a small part of the outline it
             // interrupts; an opening as wide as a quarter of the curve is drawn on purpose (an
             // open mouth, a "C"), and tiny loops of a few dashes are no shapes at all.
-            if groups.same(stroke_a, stroke_b) && length > 0.25 * (groups.length(stroke_a) + length)
+            if groups.same(stroke_a, stroke_b)
+                && length > LOOP_GAP_MAX_SHARE * (groups.length(stroke_a) + length)
             {
                 continue;
             }
@@ -80,8 +99,11 @@ pub(super) fn match_gap_bridges(
         return Vec::new();
     }
     lengths.sort_by(f64::total_cmp);
-    let typical_gap = lengths[lengths.len() / 2].clamp(spacing, 3.0 * spacing);
-    greedy_match(2.0 * typical_gap)
+    let typical_gap = lengths[lengths.len() / 2].clamp(
+        TYPICAL_GAP_MIN_IN_SPACINGS * spacing,
+        TYPICAL_GAP_MAX_IN_SPACINGS * spacing,
+    );
+    greedy_match(BRIDGE_MAX_IN_TYPICAL_GAPS * typical_gap)
         .into_iter()
         .map(|m| (m.1, m.2))
         .collect()
@@ -117,7 +139,9 @@ fn bridge_candidates(
             }
             // A stroke may close on itself only if it is long enough to be a loop: the paper's
             // "more than two edges" before closing.
-            if other_stroke == end.stroke && vertices.of_stroke[end.stroke].len() < 4 {
+            if other_stroke == end.stroke
+                && vertices.of_stroke[end.stroke].len() < MIN_SELF_BRIDGED_SAMPLES
+            {
                 continue;
             }
             // Gaps are measured between rims: a dot has the size of the dash it stands for.

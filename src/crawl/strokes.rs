@@ -33,6 +33,36 @@ pub enum Method {
     Points,
 }
 
+/// DECISION: a curve shorter than two pen widths is a stray mark (a speck that survived cleaning, a
+/// blot), not a shape.
+const MIN_CURVE_LENGTH_IN_PEN_WIDTHS: f64 = 2.0;
+
+/// Thinning erodes every stroke end by about half a pen width; open curves get it back.
+const END_EXTENSION_IN_PEN_WIDTHS: f64 = 0.5;
+
+/// DECISION: a free-ended dash no longer than two sample spacings is a dot (see
+/// [`StrokeVertices::new`]).
+const DOT_MAX_LENGTH_IN_SPACINGS: f64 = 2.0;
+
+/// The direction in which the pen left a stroke end is measured this many samples in: the last
+/// sample alone wobbles.
+const END_DIRECTION_REACH_IN_SAMPLES: usize = 2;
+
+/// The paper's closing condition: a chain closes only with more than this many edges.
+const MIN_EDGES_BEFORE_CLOSING: usize = 2;
+
+/// The length below which [`connect`] drops a curve as a stray mark, for a pen of `stroke_width`
+/// pixels: two pen widths.
+pub fn minimum_curve_length(stroke_width: f64) -> f64 {
+    MIN_CURVE_LENGTH_IN_PEN_WIDTHS * stroke_width
+}
+
+/// How far [`connect`] extends the free ends of open curves, for a pen of `stroke_width` pixels:
+/// half a pen width, what thinning took off.
+pub fn end_extension(stroke_width: f64) -> f64 {
+    END_EXTENSION_IN_PEN_WIDTHS * stroke_width
+}
+
 /// Connects sampled strokes into curves with `method`. `spacing` is the sample spacing; curves
 /// shorter than `minimum_length` are dropped as stray marks; the free ends of open curves are
 /// extended by `end_extension` (thinning erodes every stroke end by half a pen width).
@@ -133,7 +163,7 @@ impl StrokeVertices {
             let (first, last) = (*points.first()?, *points.last()?);
             let length = polyline_length(points, false);
             let free = stroke.ends == [StrokeEnd::Free, StrokeEnd::Free];
-            (!stroke.line.closed && free && length <= 2.0 * spacing)
+            (!stroke.line.closed && free && length <= DOT_MAX_LENGTH_IN_SPACINGS * spacing)
                 .then(|| (first.midpoint(last), 0.5 * length))
         };
         for stroke in strokes {
@@ -197,8 +227,12 @@ impl StrokeGraph {
                 continue;
             };
             let n = of_stroke.len();
-            // Measured two samples in, where one is there: the last sample alone wobbles.
-            let inner = [of_stroke[(n - 1).min(2)], of_stroke[n.saturating_sub(3)]];
+            // Measured a few samples in, where there are that many.
+            let reach = END_DIRECTION_REACH_IN_SAMPLES;
+            let inner = [
+                of_stroke[(n - 1).min(reach)],
+                of_stroke[n.saturating_sub(reach + 1)],
+            ];
             for ((end, vertex), inner) in stroke.ends.iter().zip([first, last]).zip(inner) {
                 let direction = positions[vertex as usize] - positions[inner as usize];
                 let outward = (direction.hypot() > 0.0).then(|| direction / direction.hypot());
@@ -237,7 +271,7 @@ pub fn connect_strokes(strokes: &[Stroke], spacing: f64) -> Vec<Polyline> {
     // graph only holds plausible connections, so this is the paper's "second-nearest" rule with
     // the neighbours that are not plausible left out.
     let chains = crawl(positions, &graph, |ends: &ChainEnds| {
-        ends.edge_count > 2 && graph.has_edge(ends.front, ends.back)
+        ends.edge_count > MIN_EDGES_BEFORE_CLOSING && graph.has_edge(ends.front, ends.back)
     });
     chains
         .into_iter()

@@ -36,6 +36,20 @@ const DELAUNAY: Rgb<u8> = Rgb([200, 200, 215]);
 const OPEN_CURVE: Rgb<u8> = Rgb([230, 60, 20]);
 const CLOSED_CURVE: Rgb<u8> = Rgb([20, 90, 220]);
 
+/// The input is faded into the gray levels from this one up, so that what is drawn over it shows.
+const FADED_BLACK: u8 = 200;
+/// The input's gray levels are divided by this to fit between [`FADED_BLACK`] and white.
+const FADE_DIVISOR: u8 = 5;
+
+/// The radius of a sample or curve point, in pixels.
+const POINT_RADIUS: i32 = 1;
+/// The radius of a stroke end, in pixels: larger than a sample, to tell free and attached ends.
+const END_RADIUS: i32 = 3;
+
+/// Rendered pixels lighter than this are paper, left out of the result picture (anti-aliasing
+/// fringes included).
+const RESULT_PAPER_LEVEL: u8 = 250;
+
 /// The debug pictures, each with a file name (`1-mask.png` …), in pipeline order. `svg` is the
 /// traced result, drawn over the input in the last picture.
 pub fn debug_images(stages: &Stages, svg: &str) -> Vec<(&'static str, RgbImage)> {
@@ -51,7 +65,7 @@ pub fn debug_images(stages: &Stages, svg: &str) -> Vec<(&'static str, RgbImage)>
 /// The input, faded to light gray, as the background the other pictures draw on.
 fn faded(gray: &GrayImage) -> RgbImage {
     RgbImage::from_fn(gray.width(), gray.height(), |x, y| {
-        let level = 200 + gray.get_pixel(x, y).0[0] / 5;
+        let level = FADED_BLACK + gray.get_pixel(x, y).0[0] / FADE_DIVISOR;
         Rgb([level, level, level])
     })
 }
@@ -92,7 +106,7 @@ fn samples_picture(stages: &Stages) -> RgbImage {
             line(&mut samples, pair[0], pair[1], color);
         }
         for &p in points {
-            dot(&mut samples, p, 1, color);
+            dot(&mut samples, p, POINT_RADIUS, color);
         }
         if stroke.line.closed {
             continue;
@@ -107,7 +121,7 @@ fn samples_picture(stages: &Stages) -> RgbImage {
             ) else {
                 continue;
             };
-            dot(&mut samples, p, 3, color);
+            dot(&mut samples, p, END_RADIUS, color);
         }
     }
     samples
@@ -156,7 +170,7 @@ fn delaunay_picture(stages: &Stages) -> RgbImage {
             line(&mut delaunay, last, first, color);
         }
         for &p in &curve.points {
-            dot(&mut delaunay, p, 1, color);
+            dot(&mut delaunay, p, POINT_RADIUS, color);
         }
     }
     delaunay
@@ -168,7 +182,7 @@ fn result_picture(stages: &Stages, svg: &str) -> RgbImage {
     let mut result = faded(&stages.gray);
     if let Ok(rendered) = render_svg(&recolor(svg), 1.0) {
         for (x, y, pixel) in rendered.enumerate_pixels() {
-            if x < width && y < height && pixel.0[0] < 250 {
+            if x < width && y < height && pixel.0[0] < RESULT_PAPER_LEVEL {
                 // The rendered paths are pure blue on white: blend by their coverage.
                 let coverage = 1.0 - f32::from(pixel.0[0]) / 255.0;
                 let under = result.get_pixel(x, y).0;

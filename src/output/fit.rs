@@ -74,6 +74,19 @@ pub fn fit_paths(curves: &[Polyline], options: &FitOptions) -> Vec<CurvePath> {
     paths
 }
 
+/// DECISION: by default a path may stray from the reconstructed polyline by a quarter of the pen
+/// width: the polyline's own wobble inside the ink is about that much.
+const TOLERANCE_IN_PEN_WIDTHS: f64 = 0.25;
+/// The floor of the default tolerance: half a pixel, below which a fit only follows the
+/// skeleton's pixel steps.
+const TOLERANCE_FLOOR_PX: f64 = 0.5;
+
+/// The default [`FitOptions::tolerance`] for a pen of `stroke_width` pixels: a quarter of the pen
+/// width, at least 0.5 px.
+pub fn default_tolerance(stroke_width: f64) -> f64 {
+    (TOLERANCE_IN_PEN_WIDTHS * stroke_width).max(TOLERANCE_FLOOR_PX)
+}
+
 /// DECISION: a vertex is a corner when the curve turns by at least this much there, measured both
 /// to its neighbours and to the samples two steps away. Gentle curves sampled every 1.5 pen widths
 /// turn by far less; one noisy sample may exceed it at one scale but rarely at both.

@@ -28,9 +28,29 @@ pub struct Drawing {
     pub points: Vec<Point>,
 }
 
+/// Coordinates and sizes are written with at most this many decimals: a hundredth of a pixel is
+/// below what any renderer shows, and shorter numbers keep the files small.
+const DECIMALS: usize = 2;
+
+/// The thinnest stroke and the smallest dot written: what two decimals can still show (a width
+/// of 0 would hide the paths).
+const MIN_SIZE: f64 = 0.01;
+
+/// Input points (`points --show-points`) are dots of this radius, in stroke widths: visible over
+/// the curve they lie on.
+const POINT_RADIUS_IN_STROKE_WIDTHS: f64 = 1.2;
+/// Their colour: a blue that stands out on the black curves.
+const POINT_COLOUR: &str = "#1e5adc";
+
+/// Outliers of a point set are dots of this radius, in stroke widths: a little larger than the
+/// input points, so that they show over them.
+const OUTLIER_RADIUS_IN_STROKE_WIDTHS: f64 = 1.5;
+/// Their colour: red, for points that belong to no curve.
+const OUTLIER_COLOUR: &str = "#d33";
+
 /// Formats a number with at most two decimals, no trailing zeros and no `-0`.
 pub fn format_number(value: f64) -> String {
-    let mut text = format!("{:.2}", value);
+    let mut text = format!("{value:.DECIMALS$}");
     if text.contains('.') {
         let trimmed = text.trim_end_matches('0').trim_end_matches('.').len();
         text.truncate(trimmed);
@@ -119,7 +139,7 @@ pub fn to_svg(drawing: &Drawing) -> String {
         svg,
         r#"<g fill="none" stroke="{}" stroke-width="{}" stroke-linecap="round" stroke-linejoin="round">"#,
         escape_attribute(&drawing.color),
-        format_number(drawing.stroke_width.max(0.01)),
+        format_number(drawing.stroke_width.max(MIN_SIZE)),
     );
     for curve in &drawing.paths {
         let _ = writeln!(svg, r#"<path d="{}"/>"#, path_data(&curve.path));
@@ -128,10 +148,15 @@ pub fn to_svg(drawing: &Drawing) -> String {
     write_dots(
         &mut svg,
         &drawing.points,
-        "#1e5adc",
-        drawing.stroke_width * 1.2,
+        POINT_COLOUR,
+        drawing.stroke_width * POINT_RADIUS_IN_STROKE_WIDTHS,
     );
-    write_dots(&mut svg, &drawing.dots, "#d33", drawing.stroke_width * 1.5);
+    write_dots(
+        &mut svg,
+        &drawing.dots,
+        OUTLIER_COLOUR,
+        drawing.stroke_width * OUTLIER_RADIUS_IN_STROKE_WIDTHS,
+    );
     svg.push_str("</svg>\n");
     svg
 }
@@ -141,7 +166,7 @@ fn write_dots(svg: &mut String, centres: &[Point], fill: &str, radius: f64) {
     if centres.is_empty() {
         return;
     }
-    let radius = format_number(radius.max(0.01));
+    let radius = format_number(radius.max(MIN_SIZE));
     let _ = writeln!(svg, r#"<g fill="{fill}">"#);
     for centre in centres {
         let _ = writeln!(

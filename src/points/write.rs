@@ -66,6 +66,13 @@ pub fn write_json(
 /// The longer side of the canvas a point set is drawn on, in pixels.
 const CANVAS_SIZE: f64 = 1000.0;
 
+/// The margin around the points, as a share of [`CANVAS_SIZE`]: room for the dots at the edge.
+const MARGIN_SHARE: f64 = 0.02;
+
+/// The stroke width of the curves on that canvas, in pixels: thin next to 1000 px, yet visible
+/// when the drawing is shown small.
+const STROKE_WIDTH_PX: f64 = 2.0;
+
 /// Draws the reconstruction: the point set's bounding box is scaled onto a canvas 1000 px on its
 /// longer side (so that two decimals are enough whatever the input's units), with a margin.
 /// Outliers are drawn as red dots, and with `show_points` every input point as a blue dot. The y
@@ -86,7 +93,7 @@ pub fn to_drawing(points: &[Point], reconstruction: &Reconstruction, show_points
     } else {
         1.0
     };
-    let margin = 0.02 * CANVAS_SIZE;
+    let margin = MARGIN_SHARE * CANVAS_SIZE;
     let map = |p: Point| {
         Point::new(
             (p.x - bounds.x0) * scale + margin,
@@ -104,7 +111,7 @@ pub fn to_drawing(points: &[Point], reconstruction: &Reconstruction, show_points
                 CurvePath::polyline(&mapped, curve.closed)
             })
             .collect(),
-        stroke_width: 2.0,
+        stroke_width: STROKE_WIDTH_PX,
         color: "#000000".into(),
         dots: reconstruction
             .outliers

@@ -17,6 +17,7 @@ use crate::geometry::Polyline;
 use crate::raster::bitmap::Bitmap;
 use graph::SkeletonGraph;
 
+pub(crate) use sample::MIN_LOOP_SAMPLES;
 pub use sample::{default_spacing, sample_strokes, simplification_tolerance};
 
 /// How one end of a [`Stroke`] ends.
@@ -39,24 +40,59 @@ pub struct Stroke {
     pub ends: [StrokeEnd; 2],
 }
 
+/// A bubble (a small loop between two junctions, the skeleton of a sliver of paper between two
+/// strokes laid side by side) is shorter than this: a real drawn loop is much bigger than a few
+/// pen widths.
+const BUBBLE_MAX_LENGTH_IN_PEN_WIDTHS: f64 = 4.0;
+/// The same in pixels, for hairlines, whose slivers are a few pixels long whatever the pen.
+const BUBBLE_MAX_LENGTH_FLOOR_PX: f64 = 8.0;
+
+/// Branch directions at a junction are measured this far along each branch: far enough to look
+/// past the junction's own blob of ink, near enough to follow a curving stroke.
+const DIRECTION_SCALE_IN_PEN_WIDTHS: f64 = 2.0;
+/// The same in pixels, so that a hairline's direction spans more than a pixel or two.
+const DIRECTION_SCALE_FLOOR_PX: f64 = 4.0;
+
+/// The spur that runs into a corner filled by a thick pen is at most this long: the corner's
+/// ink reaches a few pen widths beyond where the two sides' centre lines meet.
+const CORNER_SPUR_MAX_LENGTH_IN_PEN_WIDTHS: f64 = 6.0;
+/// The same in pixels, for thin pens.
+const CORNER_SPUR_MAX_LENGTH_FLOOR_PX: f64 = 6.0;
+
+/// Thinning leaves a spur at every bump of a stroke's outline; bumps are at most about half a
+/// pen width high, so their spurs are shorter than one pen width.
+const SPUR_MAX_LENGTH_IN_PEN_WIDTHS: f64 = 1.0;
+/// The same in pixels: on a hairline, one-pixel bumps still leave spurs of two pixels.
+const SPUR_MAX_LENGTH_FLOOR_PX: f64 = 2.0;
+
+/// Pruning can expose a new spur (two spurs forking off one branch), hence a second round.
+const SPUR_PRUNING_ROUNDS: usize = 2;
+
 /// Traces `skeleton` into strokes. `stroke_width` (the pen width in pixels) sets the longest spur
 /// that is pruned and the scale at which branch directions are measured at a junction.
 ///
 /// The result is deterministic: strokes come in the order of their first pixel in raster order.
 pub fn extract_strokes(skeleton: &Bitmap, stroke_width: f64) -> Vec<Stroke> {
+    let in_pixels = |pen_widths: f64, floor: f64| (pen_widths * stroke_width).max(floor);
     let mut graph = SkeletonGraph::trace(skeleton);
     // Two strokes laid side by side enclose slivers of paper; their skeleton is a small loop (a
-    // bubble) between two junctions. A real drawn loop is much bigger than a few pen widths.
-    graph.collapse_bubbles((4.0 * stroke_width).max(8.0));
+    // bubble) between two junctions.
+    graph.collapse_bubbles(in_pixels(
+        BUBBLE_MAX_LENGTH_IN_PEN_WIDTHS,
+        BUBBLE_MAX_LENGTH_FLOOR_PX,
+    ));
     // A corner drawn with a thick pen fills with ink; its skeleton runs into the corner as a
     // spur from a junction just inside it. The spur's tip is the corner.
-    let direction_scale = (2.0 * stroke_width).max(4.0);
-    graph.fold_corner_spurs((6.0 * stroke_width).max(6.0), direction_scale);
-    // Thinning leaves a spur at every bump of a stroke's outline; bumps are at most about half a
-    // pen width high, so their spurs are shorter than one pen width. Pruning can expose a new
-    // spur (two spurs forking off one branch), hence a second round.
-    let spur_length = stroke_width.max(2.0);
-    for _ in 0..2 {
+    let direction_scale = in_pixels(DIRECTION_SCALE_IN_PEN_WIDTHS, DIRECTION_SCALE_FLOOR_PX);
+    graph.fold_corner_spurs(
+        in_pixels(
+            CORNER_SPUR_MAX_LENGTH_IN_PEN_WIDTHS,
+            CORNER_SPUR_MAX_LENGTH_FLOOR_PX,
+        ),
+        direction_scale,
+    );
+    let spur_length = in_pixels(SPUR_MAX_LENGTH_IN_PEN_WIDTHS, SPUR_MAX_LENGTH_FLOOR_PX);
+    for _ in 0..SPUR_PRUNING_ROUNDS {
         graph.prune_spurs(spur_length);
     }
     graph.into_strokes(direction_scale)

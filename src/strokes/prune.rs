@@ -7,6 +7,11 @@ use crate::geometry::polyline::polyline_length;
 
 use super::graph::SkeletonGraph;
 
+/// A filled corner's spur points away from both sides: each side leaves the junction within 60°
+/// of the direction opposite the spur, so the cosine between the spur and either side is below
+/// cos 120° = −0.5. A stroke's branch in a T or a crossing meets the others at about 90°.
+const CORNER_SPUR_MAX_COSINE: f64 = -0.5;
+
 impl SkeletonGraph {
     /// Removes small loops: a branch from a node back to itself, and all but the shortest of
     /// several branches between the same two nodes, when shorter than `max_length`.
@@ -77,7 +82,7 @@ impl SkeletonGraph {
                         ))
                     })
                     .fold(f64::NEG_INFINITY, f64::max);
-                if score < -0.5 && best.is_none_or(|(s, _)| score < s) {
+                if score < CORNER_SPUR_MAX_COSINE && best.is_none_or(|(s, _)| score < s) {
                     best = Some((score, k));
                 }
             }
