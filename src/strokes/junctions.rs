@@ -128,19 +128,9 @@ impl SkeletonGraph {
                 }
                 let first_end = pairing.stroke_end((start_branch, at_start));
                 let mut points: Vec<Point> = Vec::new();
-                let (mut b, mut entering_at_start) = (start_branch, at_start);
-                let last_end = loop {
-                    visited[b] = true;
-                    self.append_branch(&mut points, b, entering_at_start, &pairing.skip_node_point);
-                    let leaving = (b, !entering_at_start);
-                    match pairing.partner.get(&leaving) {
-                        Some(&(next, next_at_start)) if !visited[next] => {
-                            b = next;
-                            entering_at_start = next_at_start;
-                        }
-                        _ => break pairing.stroke_end(leaving),
-                    }
-                };
+                let leaving =
+                    self.follow_partners((start_branch, at_start), pairing, visited, &mut points);
+                let last_end = pairing.stroke_end(leaving);
                 if !points.is_empty() {
                     strokes.push(Stroke {
                         line: Polyline::new(points, false),
@@ -164,18 +154,7 @@ impl SkeletonGraph {
                 continue;
             }
             let mut points: Vec<Point> = Vec::new();
-            let (mut b, mut entering_at_start) = (start_branch, true);
-            loop {
-                visited[b] = true;
-                self.append_branch(&mut points, b, entering_at_start, &pairing.skip_node_point);
-                match pairing.partner.get(&(b, !entering_at_start)) {
-                    Some(&(next, next_at_start)) if !visited[next] => {
-                        b = next;
-                        entering_at_start = next_at_start;
-                    }
-                    _ => break,
-                }
-            }
+            self.follow_partners((start_branch, true), pairing, visited, &mut points);
             // A cycle through a node repeats the node point at both ends.
             if points.len() > 1 && points[0] == points[points.len() - 1] {
                 points.pop();
@@ -186,6 +165,30 @@ impl SkeletonGraph {
                     line: Polyline::new(points, closed),
                     ends: [StrokeEnd::Free, StrokeEnd::Free],
                 });
+            }
+        }
+    }
+
+    /// Walks from the branch end `entry` through the branches its partners lead to, appending
+    /// their points, until an end with no unvisited partner; returns that last end.
+    fn follow_partners(
+        &self,
+        entry: BranchEnd,
+        pairing: &Pairing,
+        visited: &mut [bool],
+        points: &mut Vec<Point>,
+    ) -> BranchEnd {
+        let (mut b, mut entering_at_start) = entry;
+        loop {
+            visited[b] = true;
+            self.append_branch(points, b, entering_at_start, &pairing.skip_node_point);
+            let leaving = (b, !entering_at_start);
+            match pairing.partner.get(&leaving) {
+                Some(&(next, next_at_start)) if !visited[next] => {
+                    b = next;
+                    entering_at_start = next_at_start;
+                }
+                _ => return leaving,
             }
         }
     }
