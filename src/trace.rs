@@ -17,6 +17,7 @@ use crate::raster::binarize::{binarize, BinarizeOptions, MethodUsed};
 use crate::raster::bitmap::Bitmap;
 use crate::raster::clean::{clean, estimate_stroke_width, CleanReport};
 use crate::raster::decode::{decode_image, to_gray, DecodeError};
+use crate::raster::density::image_dpi;
 use crate::raster::thin::thin;
 use crate::strokes::{default_spacing, extract_strokes, sample_strokes, simplification_tolerance};
 
@@ -74,6 +75,9 @@ pub struct TraceReport {
     pub stroke_width: f64,
     /// The sample spacing used, in pixels.
     pub spacing: f64,
+    /// The fitting tolerance used (`--simplify`), in pixels: the paths stray at most this far
+    /// from the reconstructed curves. Writers that flatten the paths (DXF) flatten within it.
+    pub tolerance: f64,
     /// What cleaning removed.
     pub cleaned: CleanReport,
     /// Number of pen strokes found in the skeleton.
@@ -93,6 +97,9 @@ pub struct Traced {
     pub report: TraceReport,
     /// Intermediate results, if asked for.
     pub stages: Option<Stages>,
+    /// The pixel density the image file records, in pixels per inch (PNG `pHYs`, JPEG JFIF or
+    /// EXIF, TIFF, BMP); `None` when it records none, or when the image was given decoded.
+    pub image_dpi: Option<f64>,
 }
 
 /// Traces a line drawing into one vector path per drawn shape.
@@ -156,6 +163,7 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
             .filter(|t| t.is_finite() && *t >= 0.0)
             .unwrap_or_else(|| default_tolerance(stroke_width)),
     };
+    report.tolerance = fit_options.tolerance;
     let paths = fit_paths(&curves, &fit_options);
     watch.lap(&mut report, "fit");
 
@@ -182,6 +190,7 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
         drawing,
         report,
         stages,
+        image_dpi: None,
     })
 }
 
@@ -303,6 +312,33 @@ pub enum TraceFileError {
 /// not an image this crate reads, [`TraceFileError::Trace`] when the image has no ink.
 pub fn trace_file(path: &Path, options: &TraceOptions) -> Result<Traced, TraceFileError> {
     let bytes = std::fs::read(path).map_err(TraceFileError::Read)?;
+    trace_bytes(bytes, options)
+}
+
+/// Decodes and traces an image file held in memory (read from standard input, say): [`trace()`]
+/// on its image, with [`Traced::image_dpi`] read from the file. The format is recognised from
+/// the content.
+///
+/// # Examples
+///
+/// ```
+/// use crawltrace::{trace_bytes, TraceFileError, TraceOptions};
+///
+/// let bytes = std::fs::read("samples/letters-clean.png").unwrap();
+/// let traced = trace_bytes(bytes, &TraceOptions::default())?;
+/// assert!(!traced.drawing.paths.is_empty());
+///
+/// let garbage = trace_bytes(b"hello".to_vec(), &TraceOptions::default());
+/// assert!(matches!(garbage, Err(TraceFileError::Decode(_))));
+/// # Ok::<(), TraceFileError>(())
+/// ```
+///
+/// # Errors
+///
+/// [`TraceFileError::Decode`] when the bytes are not an image this crate reads,
+/// [`TraceFileError::Trace`] when the image has no ink; never [`TraceFileError::Read`].
+pub fn trace_bytes(bytes: Vec<u8>, options: &TraceOptions) -> Result<Traced, TraceFileError> {
+    let image_dpi = image_dpi(&bytes);
     let image = decode_image(&bytes)?;
     drop(bytes);
     // The trace starts by reducing the image to 8-bit gray; doing it here instead lets the
@@ -311,5 +347,7 @@ pub fn trace_file(path: &Path, options: &TraceOptions) -> Result<Traced, TraceFi
         gray @ DynamicImage::ImageLuma8(_) => gray,
         other => DynamicImage::ImageLuma8(to_gray(&other)),
     };
-    Ok(trace(&image, options)?)
+    let mut traced = trace(&image, options)?;
+    traced.image_dpi = image_dpi;
+    Ok(traced)
 }
