@@ -4,65 +4,15 @@
 //! the completion scripts and manual pages. The DXF itself is read back with ezdxf in
 //! `python/tests/test_dxf.py`.
 
-use std::io::{Cursor, Write};
-use std::path::Path;
-use std::process::{Command, Output, Stdio};
+mod support;
+
+use std::io::Cursor;
+use std::process::{Command, Output};
 
 use image::codecs::jpeg::{JpegEncoder, PixelDensity, PixelDensityUnit};
 use image::{DynamicImage, GrayImage, ImageFormat};
 
-const BINARY: &str = env!("CARGO_BIN_EXE_crawltrace");
-
-/// Runs the binary in `folder` with `stdin` on a pipe; checks that it did not panic.
-fn run_with_stdin(args: &[&str], folder: &Path, stdin: &[u8]) -> Output {
-    let mut child = Command::new(BINARY)
-        .args(args)
-        .current_dir(folder)
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("the binary starts");
-    let mut pipe = child.stdin.take().expect("stdin is piped");
-    // The binary may stop reading early (a usage error); a broken pipe is then expected.
-    let _ = pipe.write_all(stdin);
-    drop(pipe);
-    let output = child.wait_with_output().expect("the binary runs");
-    let stderr = String::from_utf8_lossy(&output.stderr);
-    assert!(
-        !stderr.contains("panicked") && !stderr.contains("RUST_BACKTRACE"),
-        "crawltrace {args:?} panicked:\n{stderr}"
-    );
-    output
-}
-
-fn run(args: &[&str], folder: &Path) -> Output {
-    run_with_stdin(args, folder, b"")
-}
-
-fn describe(args: &[&str], output: &Output) -> String {
-    format!(
-        "crawltrace {}\nexit: {:?}\nstderr:\n{}",
-        args.join(" "),
-        output.status.code(),
-        String::from_utf8_lossy(&output.stderr)
-    )
-}
-
-/// A skip-stroke sketch of `width` × `height` pixels: a dashed circle (closed) and a dashed wave
-/// (open).
-fn sketch(width: u32, height: u32) -> GrayImage {
-    let svg = format!(
-        r##"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}">
-        <rect width="100%" height="100%" fill="white"/>
-        <g fill="none" stroke="black" stroke-width="3" stroke-linecap="round" stroke-dasharray="22 7">
-          <circle cx="70" cy="70" r="45"/>
-          <path d="M20 160 C60 130 100 190 140 160 S 200 130 220 160"/>
-        </g></svg>"##
-    );
-    let rgba = crawltrace::render_svg(&svg, 1.0).expect("test SVG renders");
-    DynamicImage::ImageRgba8(rgba).to_luma8()
-}
+use support::cli::{describe, run, run_expecting, run_with_stdin, sketch};
 
 fn png_bytes(image: &GrayImage) -> Vec<u8> {
     let mut bytes = Vec::new();
@@ -133,6 +83,14 @@ fn assert_close(actual: (f64, f64), expected: (f64, f64), what: &str) {
     );
 }
 
+/// Runs a command that must be refused with exit code 2 and one line on stderr; the line.
+fn refused(args: &[&str], folder: &std::path::Path, stdin: &[u8]) -> String {
+    let output = run_expecting(2, args, folder, stdin);
+    let stderr = String::from_utf8_lossy(&output.stderr).into_owned();
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    stderr
+}
+
 fn stdout_text(output: &Output) -> String {
     String::from_utf8(output.stdout.clone()).expect("UTF-8 output")
 }
@@ -157,7 +115,10 @@ fn an_image_on_a_pipe_is_traced_to_standard_output() {
     assert!(implicit.stderr.is_empty());
 
     // Through a shell pipeline, into a file.
-    let script = format!("cat sketch.png | '{BINARY}' trace - -o piped.svg -q");
+    let script = format!(
+        "cat sketch.png | '{}' trace - -o piped.svg -q",
+        support::cli::binary()
+    );
     let status = Command::new("sh")
         .args(["-c", &script])
         .current_dir(folder.path())
@@ -181,16 +142,7 @@ fn garbage_or_nothing_on_standard_input_is_a_one_line_error() {
             "corrupt or truncated",
         ),
     ] {
-        let args = ["trace", "-", "-o", "out.svg"];
-        let output = run_with_stdin(&args, folder.path(), stdin);
-        assert_eq!(
-            output.status.code(),
-            Some(2),
-            "{}",
-            describe(&args, &output)
-        );
-        let stderr = String::from_utf8_lossy(&output.stderr);
-        assert_eq!(stderr.lines().count(), 1, "{stderr}");
+        let stderr = refused(&["trace", "-", "-o", "out.svg"], folder.path(), stdin);
         assert!(
             stderr.starts_with("error: <stdin>: ") && stderr.contains(problem),
             "{stderr}"
@@ -198,17 +150,8 @@ fn garbage_or_nothing_on_standard_input_is_a_one_line_error() {
         assert!(!folder.path().join("out.svg").exists());
     }
     std::fs::write(folder.path().join("a.png"), png_bytes(&sketch(240, 200))).unwrap();
-    let args = ["trace", "-", "a.png", "-o", "out"];
-    let output = run(&args, folder.path());
-    assert_eq!(
-        output.status.code(),
-        Some(2),
-        "{}",
-        describe(&args, &output)
-    );
-    assert!(
-        String::from_utf8_lossy(&output.stderr).contains("standard input can only be traced alone")
-    );
+    let stderr = refused(&["trace", "-", "a.png", "-o", "out"], folder.path(), b"");
+    assert!(stderr.contains("standard input can only be traced alone"));
 }
 
 #[test]
@@ -297,17 +240,8 @@ fn bad_sizes_are_one_line_errors_before_any_work() {
             "error: --size: must be a positive length with a unit",
         ),
     ] {
-        let mut args = vec!["trace", "a.png", "-o", "a.svg"];
-        args.extend_from_slice(extra);
-        let output = run(&args, folder.path());
-        assert_eq!(
-            output.status.code(),
-            Some(2),
-            "{}",
-            describe(&args, &output)
-        );
-        let stderr = String::from_utf8_lossy(&output.stderr);
-        assert_eq!(stderr.lines().count(), 1, "{stderr}");
+        let args = [&["trace", "a.png", "-o", "a.svg"][..], extra].concat();
+        let stderr = refused(&args, folder.path(), b"");
         assert!(stderr.starts_with(message), "{args:?}: {stderr}");
         assert!(!folder.path().join("a.svg").exists());
     }
@@ -317,15 +251,8 @@ fn bad_sizes_are_one_line_errors_before_any_work() {
         &["--format", "pdf"][..],
         &["--dpi", "300", "--size", "8in"][..],
     ] {
-        let mut args = vec!["trace", "a.png", "-o", "a.svg"];
-        args.extend_from_slice(extra);
-        let output = run(&args, folder.path());
-        assert_eq!(
-            output.status.code(),
-            Some(2),
-            "{}",
-            describe(&args, &output)
-        );
+        let args = [&["trace", "a.png", "-o", "a.svg"][..], extra].concat();
+        run_expecting(2, &args, folder.path(), b"");
         assert!(!folder.path().join("a.svg").exists());
     }
 }

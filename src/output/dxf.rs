@@ -347,46 +347,34 @@ impl DxfWriter {
             ("*Model_Space", owners.model_space, false),
             ("*Paper_Space", owners.paper_space, true),
         ] {
-            self.pair(0, "BLOCK");
-            self.handle(5);
-            self.hex(330, owner);
-            self.pair(100, "AcDbEntity");
-            if paper {
-                self.pair(67, 1);
-            }
-            self.pair(8, "0");
-            self.pair(100, "AcDbBlockBegin");
+            self.entity(("BLOCK", "AcDbBlockBegin"), owner, paper);
             self.pair(2, name);
             self.pair(70, 0);
             self.point_pair(0, Point::ZERO);
             self.real(30, 0.0);
             self.pair(3, name);
             self.pair(1, "");
-            self.pair(0, "ENDBLK");
-            self.handle(5);
-            self.hex(330, owner);
-            self.pair(100, "AcDbEntity");
-            if paper {
-                self.pair(67, 1);
-            }
-            self.pair(8, "0");
-            self.pair(100, "AcDbBlockEnd");
+            self.entity(("ENDBLK", "AcDbBlockEnd"), owner, paper);
         }
         self.end_section();
     }
 
-    /// The common start of an entity on layer 0 in model space.
-    fn entity(&mut self, kind: &str, owner: u32, subclass: &str) {
+    /// The common start of an entity (or block marker) of `kind` and `subclass` on layer 0,
+    /// owned by `owner`, in paper space if `paper_space`.
+    fn entity(&mut self, (kind, subclass): (&str, &str), owner: u32, paper_space: bool) {
         self.pair(0, kind);
         self.handle(5);
         self.hex(330, owner);
         self.pair(100, "AcDbEntity");
+        if paper_space {
+            self.pair(67, 1);
+        }
         self.pair(8, "0");
         self.pair(100, subclass);
     }
 
     fn lwpolyline(&mut self, vertices: &[Point], closed: bool, owner: u32) {
-        self.entity("LWPOLYLINE", owner, "AcDbPolyline");
+        self.entity(("LWPOLYLINE", "AcDbPolyline"), owner, false);
         self.pair(90, vertices.len());
         let closed = closed && vertices.len() > 2;
         self.pair(70, if closed { POLYLINE_CLOSED } else { 0 });
@@ -397,7 +385,7 @@ impl DxfWriter {
     }
 
     fn point(&mut self, at: Point, owner: u32) {
-        self.entity("POINT", owner, "AcDbPoint");
+        self.entity(("POINT", "AcDbPoint"), owner, false);
         self.point_pair(0, at);
         self.real(30, 0.0);
     }
