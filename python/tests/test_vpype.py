@@ -77,9 +77,13 @@ def test_a_pipe_from_the_command_into_vpype(samples, binary, tmp_path):
     assert "Layer 1" in result.stdout or "layer" in result.stdout.lower(), result.stdout
 
 
-def test_a_bad_image_is_a_vpype_error(tmp_path):
+def test_a_bad_image_or_dpi_is_a_vpype_error(tmp_path, samples):
     (tmp_path / "bad.png").write_bytes(b"not an image")
-    result = vpype("ctrace", "bad.png", "stat", cwd=tmp_path)
-    assert result.returncode != 0
-    assert "bad.png: not an image" in result.stderr
-    assert "Traceback" not in result.stderr
+    for args, message in [
+        (["bad.png"], "bad.png: not an image"),
+        (["--dpi", "0", str(samples / "face-clean.png")], "dpi: must be a positive number"),
+    ]:
+        result = vpype("ctrace", *args, "stat", cwd=tmp_path)
+        assert result.returncode != 0
+        assert message in result.stderr, result.stderr
+        assert "Traceback" not in result.stderr
