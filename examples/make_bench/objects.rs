@@ -5,8 +5,8 @@ use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 use kurbo::{Affine, Point, Vec2};
 
-use crate::families::{any_angle, dot, few, object_spacing, several, ROW_WIDTH};
-use crate::figure::{arrange, Figure};
+use crate::families::{any_angle, dot, few, fit_on_page, object_spacing, several};
+use crate::figure::Figure;
 use crate::pen::Hand;
 use crate::random::SplitMix64;
 use crate::shapes::{blob, ellipse, polygon, polyline, star, Builder, Shape};
@@ -325,7 +325,9 @@ fn zigzag(hand: &Hand, random: &mut SplitMix64) -> Shape {
     let height = random.range((4.0 * hand.pen).max(20.0), 80.0);
     // Teeth no sharper than 40°.
     let step = random.range(height * 2.0 * 20f64.to_radians().tan(), height * 1.5);
-    let teeth = 3 + random.index(6);
+    let teeth = (3 + random.index(6))
+        .min((650.0 / (2.0 * step)) as usize)
+        .max(2);
     polyline(
         (0..=2 * teeth)
             .map(|i| p(step * i as f64, if i % 2 == 0 { height } else { 0.0 }))
@@ -349,11 +351,14 @@ fn square_wave(hand: &Hand, random: &mut SplitMix64) -> Shape {
 /// 2–5 shapes of one kind inside each other, 1.5–3 (gap + pen) apart, sometimes off centre.
 pub fn nested(hand: &mut Hand, random: &mut SplitMix64) -> Figure {
     let spacing = (random.range(1.5, 3.0) * (hand.gap.1 + hand.pen)).max(10.0);
-    let count = 2 + random.index(4);
-    let outer = random.range(
-        (count as f64 * spacing + 25.0).max(60.0),
-        (count as f64 * spacing + 60.0).max(220.0),
-    );
+    // As many as fit within a radius of 300 px (a square of that size turned 45° still fits).
+    let count = (2 + random.index(4)).min(((270.0 / spacing) as usize).max(2));
+    let outer = random
+        .range(
+            (count as f64 * spacing + 25.0).max(60.0),
+            (count as f64 * spacing + 60.0).max(220.0),
+        )
+        .min(300.0);
     let aspect = random.range(0.55, 1.0);
     let kind = random.index(5);
     let sides = 3 + random.index(4);
@@ -444,7 +449,7 @@ pub fn objects(hand: &mut Hand, random: &mut SplitMix64) -> Figure {
         })
         .collect();
     let spacing = object_spacing(&hand, random);
-    arrange(figures, spacing, ROW_WIDTH, random)
+    fit_on_page(figures, spacing, random)
 }
 
 fn house(size: f64, random: &mut SplitMix64) -> Figure {

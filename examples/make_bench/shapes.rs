@@ -244,24 +244,30 @@ pub struct Protrusion {
 pub fn insert_protrusions(outline: &Shape, inside: Point, protrusions: &[Protrusion]) -> Shape {
     let chains: Vec<Chain> = protrusions
         .iter()
-        .map(|protrusion| {
-            let (middle, tangent) = point_at(outline, protrusion.at);
-            let mut normal = Vec2::new(-tangent.y, tangent.x);
-            if normal.dot(middle - inside) < 0.0 {
-                normal = -normal;
-            }
-            Chain {
-                from: protrusion.at - protrusion.base / 2.0,
-                to: protrusion.at + protrusion.base / 2.0,
-                points: protrusion
-                    .local
-                    .iter()
-                    .map(|local| middle + tangent * local.x + normal * local.y)
-                    .collect(),
-            }
-        })
+        .map(|protrusion| protrusion.chain(outline, inside))
         .collect();
     insert_chains(outline, &chains)
+}
+
+impl Protrusion {
+    /// The protrusion in page coordinates, as the chain that replaces the outline under its base;
+    /// its local y axis points away from `inside`.
+    pub fn chain(&self, outline: &Shape, inside: Point) -> Chain {
+        let (middle, tangent) = point_at(outline, self.at);
+        let mut normal = Vec2::new(-tangent.y, tangent.x);
+        if normal.dot(middle - inside) < 0.0 {
+            normal = -normal;
+        }
+        Chain {
+            from: self.at - self.base / 2.0,
+            to: self.at + self.base / 2.0,
+            points: self
+                .local
+                .iter()
+                .map(|local| middle + tangent * local.x + normal * local.y)
+                .collect(),
+        }
+    }
 }
 
 /// A chain of vertices in page coordinates that replaces the outline between two arc lengths.

@@ -321,7 +321,7 @@ pub fn animals(hand: &mut Hand, random: &mut SplitMix64) -> Figure {
             body.length() - protrusion.base / 2.0 - 1.0,
         );
         let placed = Protrusion { at, ..protrusion };
-        chains.extend(protrusion_chain(&body, &placed));
+        chains.push(placed.chain(&body, Point::ORIGIN));
     }
     let outline = insert_chains(&body, &chains);
     let facing = if random.chance(0.5) { 1.0 } else { -1.0 };
@@ -343,24 +343,6 @@ fn nearest_arc_length(shape: &Shape, target: Point) -> f64 {
         travelled += point.distance(shape.points[(index + 1) % count]);
     }
     best.1
-}
-
-/// The chain a protrusion puts into the body (whose inside is around the origin).
-fn protrusion_chain(outline: &Shape, protrusion: &Protrusion) -> Vec<Chain> {
-    let (middle, tangent) = crate::shapes::point_at(outline, protrusion.at);
-    let mut normal = Vec2::new(-tangent.y, tangent.x);
-    if normal.dot(middle.to_vec2()) < 0.0 {
-        normal = -normal;
-    }
-    vec![Chain {
-        from: protrusion.at - protrusion.base / 2.0,
-        to: protrusion.at + protrusion.base / 2.0,
-        points: protrusion
-            .local
-            .iter()
-            .map(|local| middle + tangent * local.x + normal * local.y)
-            .collect(),
-    }]
 }
 
 /// A round head 30–55 px wide and 25–50 px high with one or two pointed or round ears.
