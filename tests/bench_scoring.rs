@@ -101,6 +101,15 @@ fn a_closed_curve_left_open_is_wrong_closedness() {
         kinds(&[open_square, line(0.0), dot_path(300.0, 50.0)]),
         vec![Failure::WrongClosedness, Failure::ExtraPath]
     );
+    // The same square with its last stretch as a path of its own is split, not left open.
+    let mut three_sides = square(0.0);
+    three_sides.points.push(Point::new(10.0, 40.0));
+    three_sides.closed = false;
+    let last_stretch = polyline(&[(10.0, 40.0), (10.0, 10.0)], false);
+    assert_eq!(
+        kinds(&[three_sides, last_stretch, line(0.0), dot_path(300.0, 50.0)]),
+        vec![Failure::TooFarSplit, Failure::ExtraPath]
+    );
     // Round the whole square and back to its start, open: the matcher's own closedness check.
     let mut around = square(0.0);
     around.points.push(around.points[0]);
@@ -113,12 +122,20 @@ fn a_closed_curve_left_open_is_wrong_closedness() {
 }
 
 #[test]
-fn a_curve_cut_short_or_split_and_one_joined_to_another_are_told_apart() {
+fn a_curve_split_cut_short_or_joined_to_another_is_told_apart() {
     let half = polyline(&[(150.0, 10.0), (200.0, 60.0)], false);
     let other_half = polyline(&[(200.0, 60.0), (250.0, 110.0)], false);
     assert_eq!(
         kinds(&[square(0.0), half, other_half, dot_path(300.0, 50.0)]),
-        vec![Failure::TooFarShort, Failure::ExtraPath]
+        vec![Failure::TooFarSplit, Failure::ExtraPath]
+    );
+    // A corner cut off 6 px along each side: 4.2 px from the truth, the tolerance is 4.
+    let mut cut = square(0.0);
+    cut.points
+        .splice(1..2, [Point::new(104.0, 10.0), Point::new(110.0, 16.0)]);
+    assert_eq!(
+        kinds(&[cut, line(0.0), dot_path(300.0, 50.0)]),
+        vec![Failure::TooFarCut, Failure::ExtraPath]
     );
     // The line runs on into the dot: the line overruns, and the dot is bridged.
     let joined = polyline(&[(150.0, 10.0), (250.0, 110.0), (300.0, 50.0)], false);

@@ -496,9 +496,10 @@ fn finger(hand: &mut Hand, random: &mut SplitMix64) -> Figure {
         let tip_start = builder.length();
         builder.arc(tip_centre, width / 2.0, PI, TAU);
         let tip = (tip_start + builder.length()) / 2.0;
+        // From the tip's middle to either end of the round tip.
+        let reach = tip - tip_start;
         builder.line_to(Point::new(x + width / 2.0, 0.0));
         // The U-stroke runs 0.3–1.5 finger widths down each side, then the pen lifts.
-        let reach = (tip_start + builder.length()) / 2.0 - tip_start;
         let down = (reach + width * random.range(0.3, 1.5)).min(length - width);
         let side = length - width / 2.0 - (down - reach);
         let visible = hand.random_gap(random).min(0.6 * side - pen).max(0.5 * pen);

@@ -386,7 +386,7 @@ fn head_with_ears(pen: f64, random: &mut SplitMix64) -> Protrusion {
 fn legs(body: &Shape, rx: f64, ground: f64, pen: f64, random: &mut SplitMix64) -> Vec<Chain> {
     let count = 2 + random.index(5);
     let widths: Vec<f64> = (0..count).map(|_| pen * random.range(0.5, 3.0)).collect();
-    let span = rx * random.range(0.9, 1.2);
+    let span = rx * random.range(1.0, 1.4);
     let slot = span / count as f64;
     let xs: Vec<f64> = (0..count)
         .map(|i| -span / 2.0 + slot * (i as f64 + random.range(0.3, 0.7)))
@@ -403,7 +403,7 @@ fn legs(body: &Shape, rx: f64, ground: f64, pen: f64, random: &mut SplitMix64) -
         };
         let y_of = |s: f64| crate::shapes::point_at(body, s).0.y;
         let foot = match xs.get(i + 1) {
-            Some(&next) if random.chance(0.35) => {
+            Some(&next) if random.chance(0.25) => {
                 // Touching: the foot ends 0–1 pen widths (centre lines) from the next leg.
                 next - widths[i + 1] / 2.0 - right - pen * random.range(0.0, 1.0)
             }

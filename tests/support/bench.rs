@@ -116,9 +116,12 @@ pub enum Failure {
     /// A path follows the curve within the tolerance but is open where the curve is closed, or
     /// the other way round.
     WrongClosedness,
-    /// The nearest path lies on the curve but does not cover it: cut short (a tip), or the curve
-    /// is split into several paths.
-    TooFarShort,
+    /// The nearest path lies on the curve but does not reach all of it, by at most
+    /// `CUT_REACH` tolerances: a tip, corner or end cut off.
+    TooFarCut,
+    /// The nearest path lies on the curve but leaves a longer stretch of it out: the curve is
+    /// split into several paths (or a piece is missing).
+    TooFarSplit,
     /// The nearest path covers the curve but runs on beyond it: joined to another curve, bridged
     /// across, or overshooting.
     TooFarOverrun,
@@ -134,10 +137,11 @@ pub enum Failure {
 
 impl Failure {
     /// Every failure kind, in table order.
-    pub const ALL: [Failure; 8] = [
+    pub const ALL: [Failure; 9] = [
         Failure::MissingCurve,
         Failure::WrongClosedness,
-        Failure::TooFarShort,
+        Failure::TooFarCut,
+        Failure::TooFarSplit,
         Failure::TooFarOverrun,
         Failure::TooFarOff,
         Failure::ExtraPath,
@@ -150,7 +154,8 @@ impl Failure {
         match self {
             Failure::MissingCurve => "missing curve",
             Failure::WrongClosedness => "wrong closedness",
-            Failure::TooFarShort => "too far: short/split",
+            Failure::TooFarCut => "too far: cut short",
+            Failure::TooFarSplit => "too far: split",
             Failure::TooFarOverrun => "too far: runs past",
             Failure::TooFarOff => "too far: off curve",
             Failure::ExtraPath => "extra path",
@@ -223,6 +228,11 @@ const MISSING_REACH: f64 = 3.0;
 /// A path of the other closedness that shares this much of its length with the curve (and lies
 /// on it, or covers it) is the curve left open or sealed.
 const SAME_BUT_A_GAP: f64 = 0.75;
+/// A path on the curve that misses it by at most this many tolerances has cut a tip, a corner or
+/// an end; one that misses more has left a piece out.
+const CUT_REACH: f64 = 3.0;
+/// Other paths covering more than this share of the curve make it split, not left open.
+const OTHER_PATHS_SHARE: f64 = 0.02;
 
 /// Judges `output` (the traced paths, flattened) against `truth`.
 pub fn score_drawing(truth: &BenchTruth, output: &[Polyline]) -> DrawingScore {
@@ -385,14 +395,20 @@ fn curve_problem(
             // long closing segment, is a closedness failure, not a distance one: the path and
             // the curve are the same but for a stretch of at most a quarter of either.
             let closedness_differs = curve.closed != paths[output].closed;
+            // Left open, not split: no other path lies on the stretch this one leaves out.
+            let own_cover = true_curve.fraction_within(&indexed[output], tolerance);
+            let all_cover = true_curve.fraction_within(all_output, tolerance);
             let left_open = off <= tolerance
-                && true_curve.fraction_within(&indexed[output], tolerance) >= SAME_BUT_A_GAP;
+                && own_cover >= SAME_BUT_A_GAP
+                && all_cover - own_cover < OTHER_PATHS_SHARE;
             let sealed = along <= tolerance
                 && indexed[output].fraction_within(&true_curve, tolerance) >= SAME_BUT_A_GAP;
             let kind = if closedness_differs && (left_open || sealed) {
                 Failure::WrongClosedness
+            } else if off <= tolerance && along <= CUT_REACH * tolerance {
+                Failure::TooFarCut
             } else if off <= tolerance {
-                Failure::TooFarShort
+                Failure::TooFarSplit
             } else if along <= tolerance {
                 Failure::TooFarOverrun
             } else {
