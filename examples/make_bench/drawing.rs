@@ -67,34 +67,13 @@ pub fn generate(
         .iter()
         .map(|part| TrueCurve::from_points(part.shape.points.clone(), part.shape.closed))
         .collect();
-    let mut strokes: Vec<Stroke> = Vec::new();
-    for (curve, part) in curves.iter().zip(&figure.parts) {
-        let intervals = pen_intervals(curve, &part.plan, &hand, &mut random);
-        strokes.extend(draw_intervals(
-            curve,
-            &intervals,
-            &hand,
-            style.lightest_ink(),
-            &mut random,
-        ));
-    }
-    for dot in &figure.dots {
-        strokes.push(draw_dot(
-            dot.centre,
-            dot.diameter,
-            style.lightest_ink(),
-            &mut random,
-        ));
-    }
-    // People start anywhere and draw in any order.
-    random.shuffle(&mut strokes);
+    let strokes = sketch_figure(&figure, &curves, &hand, style, &mut random);
     let sketch = strokes_to_svg(width, height, &strokes);
     let rendered = crawltrace::render::render_svg(&sketch, 1.0).expect("the sketch renders");
     let image = style.encode(&rendered, seed);
 
     let name = format!("{}-{}-{index:03}", family.name, style.name());
     let image_file = format!("{name}.{}", style.extension());
-    let tolerance = hand.jitter + pen / 2.0 + 2.0;
     let truth = truth_svg(
         &name,
         family,
@@ -105,27 +84,18 @@ pub fn generate(
         &curves,
         &figure,
     );
-    let manifest = serde_json::json!({
-        "name": name,
-        "image": image_file,
-        "truth": format!("{name}.truth.svg"),
-        "family": family.name,
-        "touching": family.touching,
-        "style": style.name(),
-        "pen": round2(pen),
-        "jitter": round2(hand.jitter),
-        "tolerance": round2(tolerance),
-        "width": width,
-        "height": height,
-        "curves": curves.len(),
-        "closed_curves": curves.iter().filter(|c| c.closed).count(),
-        "dots": figure.dots.len(),
-        "strokes": strokes.len(),
-        "gap_px": [round2(hand.gap.0), round2(hand.gap.1)],
-        "stroke_px": [round2(hand.stroke.0), round2(hand.stroke.1)],
-        "seed": seed,
-    })
-    .to_string();
+    let manifest = manifest_line(
+        &name,
+        &image_file,
+        family,
+        style,
+        &hand,
+        seed,
+        (width, height),
+        &curves,
+        &figure,
+        strokes.len(),
+    );
     Generated {
         name,
         image_file,
@@ -133,6 +103,75 @@ pub fn generate(
         truth,
         manifest,
     }
+}
+
+/// Every stroke of the figure (curves along their plans, then dots), in a random drawing order.
+fn sketch_figure(
+    figure: &Figure,
+    curves: &[TrueCurve],
+    hand: &Hand,
+    style: Style,
+    random: &mut SplitMix64,
+) -> Vec<Stroke> {
+    let mut strokes: Vec<Stroke> = Vec::new();
+    for (curve, part) in curves.iter().zip(&figure.parts) {
+        let intervals = pen_intervals(curve, &part.plan, hand, random);
+        strokes.extend(draw_intervals(
+            curve,
+            &intervals,
+            hand,
+            style.lightest_ink(),
+            random,
+        ));
+    }
+    for dot in &figure.dots {
+        strokes.push(draw_dot(
+            dot.centre,
+            dot.diameter,
+            style.lightest_ink(),
+            random,
+        ));
+    }
+    // People start anywhere and draw in any order.
+    random.shuffle(&mut strokes);
+    strokes
+}
+
+/// The drawing's line of `manifest.jsonl`.
+#[allow(clippy::too_many_arguments)]
+fn manifest_line(
+    name: &str,
+    image_file: &str,
+    family: &Family,
+    style: Style,
+    hand: &Hand,
+    seed: u64,
+    (width, height): (u32, u32),
+    curves: &[TrueCurve],
+    figure: &Figure,
+    strokes: usize,
+) -> String {
+    serde_json::json!({
+        "name": name,
+        "image": image_file,
+        "truth": format!("{name}.truth.svg"),
+        "family": family.name,
+        "touching": family.touching,
+        "style": style.name(),
+        "pen": round2(hand.pen),
+        "jitter": round2(hand.jitter),
+        "tolerance": round2(hand.jitter + hand.pen / 2.0 + 2.0),
+        "width": width,
+        "height": height,
+        "curves": curves.len(),
+        "closed_curves": curves.iter().filter(|c| c.closed).count(),
+        "dots": figure.dots.len(),
+        "strokes": strokes,
+        "gap_px": [round2(hand.gap.0), round2(hand.gap.1)],
+        "stroke_px": [round2(hand.stroke.0), round2(hand.stroke.1)],
+        "seed": seed,
+    })
+    .to_string()
 }
 
 fn round2(value: f64) -> f64 {
