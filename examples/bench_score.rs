@@ -21,8 +21,8 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use clap::{Parser, ValueEnum};
-use crawltrace::sketch::Method;
-use crawltrace::{decode, svg, trace, TraceOptions};
+use crawltrace::stages::decode;
+use crawltrace::{to_svg, trace, Method, TraceOptions};
 use rayon::prelude::*;
 
 use support::bench::{load_bench_truth, score_drawing, BenchTruth, DrawingScore};
@@ -185,7 +185,7 @@ fn trace_and_score(entry: &Entry, method: Method) -> Outcome {
         .and_then(|picture| trace(&picture, &options).map_err(|e| e.to_string()));
     let seconds = started.elapsed().as_secs_f64();
     let (output, error) = match traced {
-        Ok(traced) => (support::load_curves(&svg::to_svg(&traced.drawing)), None),
+        Ok(traced) => (support::load_curves(&to_svg(&traced.drawing)), None),
         Err(error) => (Vec::new(), Some(error)),
     };
     let score = score_drawing(&entry.truth, &output);

@@ -28,8 +28,8 @@ mod support;
 #[path = "../examples/make_bench/touching.rs"]
 mod touching;
 
-use crawltrace::render::render_svg;
-use crawltrace::svg::{to_svg, CurvePath, Drawing};
+use crawltrace::render_svg;
+use crawltrace::{to_svg, CurvePath, Drawing};
 use support::bench::{load_bench_truth, BenchTruth};
 
 /// Ink may lie this far beyond the tolerance band of the truth (antialiasing, round caps).

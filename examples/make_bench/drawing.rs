@@ -4,7 +4,8 @@
 
 use std::fmt::Write as _;
 
-use crawltrace::svg::{format_number, to_svg, CurvePath, Drawing};
+use crawltrace::stages::svg::format_number;
+use crawltrace::{to_svg, CurvePath, Drawing};
 use kurbo::{Affine, Vec2};
 
 use crate::families::{hand_for, pen_width, Family, FAMILIES};
@@ -69,7 +70,7 @@ pub fn generate(
         .collect();
     let strokes = sketch_figure(&figure, &curves, &hand, style, &mut random);
     let sketch = strokes_to_svg(width, height, &strokes);
-    let rendered = crawltrace::render::render_svg(&sketch, 1.0).expect("the sketch renders");
+    let rendered = crawltrace::render_svg(&sketch, 1.0).expect("the sketch renders");
     let image = style.encode(&rendered, seed);
 
     let name = format!("{}-{}-{index:03}", family.name, style.name());
