@@ -15,7 +15,7 @@ use std::time::{Duration, Instant};
 use crawltrace::stages::binarize::{binarize, BinarizeOptions};
 use crawltrace::stages::bitmap::Bitmap;
 use crawltrace::stages::clean::{clean, estimate_stroke_width};
-use crawltrace::stages::crawl::strokes::{connect, end_extension, minimum_curve_length, Method};
+use crawltrace::stages::crawl::strokes::{connect, Method};
 use crawltrace::stages::decode::{decode_image, to_gray};
 use crawltrace::stages::fit::{default_tolerance, fit_paths, FitOptions};
 use crawltrace::stages::geometry::Polyline;
@@ -81,8 +81,7 @@ impl Pipeline {
             &sampled,
             Method::Strokes,
             spacing,
-            minimum_curve_length(stroke_width),
-            end_extension(stroke_width),
+            stroke_width,
         );
         let fit_options = FitOptions {
             smooth: true,
@@ -257,8 +256,7 @@ fn stage_7_reconstruct(bencher: Bencher, page: Page) {
             black_box(&p.sampled),
             Method::Strokes,
             p.spacing,
-            minimum_curve_length(p.stroke_width),
-            end_extension(p.stroke_width),
+            p.stroke_width,
         )
     });
 }

@@ -8,7 +8,7 @@ use std::time::{Duration, Instant};
 
 use image::{DynamicImage, GrayImage};
 
-use crate::crawl::strokes::{connect, end_extension, minimum_curve_length, Method};
+use crate::crawl::strokes::{connect, Method};
 use crate::files::describe_io;
 use crate::output::debug::Stages;
 use crate::output::fit::{default_tolerance, fit_paths, FitOptions};
@@ -144,8 +144,7 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
         &sampled,
         options.method,
         spacing,
-        minimum_curve_length(stroke_width),
-        end_extension(stroke_width),
+        stroke_width,
     );
     watch.lap(&mut report, "reconstruct");
 

@@ -21,8 +21,25 @@ pub(super) struct FreeEnd {
     pub(super) outward: Option<Vec2>,
 }
 
-/// A possible bridge: (cost, length, end, other end), the ends as vertices, `end < other end`.
-type Candidate = (f64, f64, u32, u32);
+/// A possible bridge between two free ends (vertices `a < b`).
+struct Candidate {
+    cost: f64,
+    /// The drawn length, rim to rim.
+    length: f64,
+    a: u32,
+    b: u32,
+    /// The corner the bridge is drawn through, if it is one.
+    corner: Option<Point>,
+}
+
+/// An accepted bridge: its two end vertices and, for a bridge across a corner, the corner point
+/// the curve goes through between them.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Bridge {
+    pub(super) a: u32,
+    pub(super) b: u32,
+    pub(super) corner: Option<Point>,
+}
 
 /// Chooses the bridges across pen lifts: pairs of free stroke ends joined by a Delaunay edge,
 /// matched greedily from the shortest, each end used once.
@@ -49,6 +66,31 @@ const TYPICAL_GAP_MAX_IN_SPACINGS: f64 = 3.0;
 /// DECISION: a bridge may be at most this many typical gaps long; see [`match_gap_bridges`].
 const BRIDGE_MAX_IN_TYPICAL_GAPS: f64 = 2.0;
 
+/// A bridge that clearly closes a loop may be this many typical gaps long; see
+/// [`Matching::closes_clearly`].
+const LOOP_GAP_MAX_IN_TYPICAL_GAPS: f64 = 3.5;
+
+/// ... and at most this share of the loop.
+const LOOP_GAP_MAX_SHARE_WIDE: f64 = 0.15;
+
+/// A straight bridge may turn by at most this much at either end, in degrees.
+const MAX_STRAIGHT_TURN_DEGREES: f64 = 60.0;
+
+/// Ends turning by more than this (degrees) may instead be joined at the corner where their lines
+/// meet.
+const MIN_CORNER_TURN_DEGREES: f64 = 35.0;
+
+/// The lines of two ends may meet this share of the distance between the ends behind one of
+/// them and still count as meeting at that end (a stroke drawn right up to a corner).
+const CORNER_AT_END_SLACK: f64 = 0.2;
+
+/// Rays closer to parallel than this (the sine of the angle between them) do not meet.
+const MIN_RAY_CROSSING_SINE: f64 = 0.05;
+
+/// The `k` of the continuation cost `length · exp(k·(θa² + θb²))`, θ in radians: a partner
+/// straight ahead is preferred to one turning by θ ≥ 35° up to 1.5 times its length.
+const TURN_COST: f64 = 1.1;
+
 /// A stroke may be bridged to itself only with at least this many samples (the paper's "more
 /// than two edges" before a chain closes).
 const MIN_SELF_BRIDGED_SAMPLES: usize = MIN_LOOP_SAMPLES;
@@ -58,55 +100,142 @@ pub(super) fn match_gap_bridges(
     delaunay: &NeighbourGraph,
     free_ends: &[FreeEnd],
     spacing: f64,
-) -> Vec<(u32, u32)> {
+    stroke_width: f64,
+) -> Vec<Bridge> {
     let candidates = bridge_candidates(vertices, delaunay, free_ends);
-    // How many bridges each vertex may take: one per free end it is (two for a one-sample dot).
-    let mut slots: HashMap<u32, u8> = HashMap::new();
-    for end in free_ends {
-        *slots.entry(end.vertex).or_default() += 1;
+    let matching = Matching::new(vertices, free_ends, &candidates, stroke_width);
+    // First pass: the drawing's typical gap. Second pass: the matching itself, with overlong
+    // bridges out of the running, so that they cannot take an end from a real gap.
+    let mut gaps: Vec<f64> = matching
+        .run(None)
+        .iter()
+        .map(|m| matching.ink_gap(m))
+        .collect();
+    if gaps.is_empty() {
+        return Vec::new();
     }
-    let stroke_of: HashMap<u32, usize> = free_ends.iter().map(|e| (e.vertex, e.stroke)).collect();
-    let greedy_match = |longest: f64| -> Vec<(f64, u32, u32)> {
-        let mut groups = StrokeGroups::new(vertices);
-        let mut matched: Vec<(f64, u32, u32)> = Vec::new();
-        let mut remaining = slots.clone();
-        for &(_, length, a, b) in &candidates {
+    gaps.sort_by(f64::total_cmp);
+    let typical_gap = gaps[gaps.len() / 2].clamp(
+        TYPICAL_GAP_MIN_IN_SPACINGS * spacing,
+        TYPICAL_GAP_MAX_IN_SPACINGS * spacing,
+    );
+    matching
+        .run(Some(typical_gap))
+        .into_iter()
+        .map(|m| Bridge {
+            a: m.a,
+            b: m.b,
+            corner: m.corner,
+        })
+        .collect()
+}
+
+/// The greedy matching of free ends, cheapest bridge first.
+struct Matching<'a> {
+    vertices: &'a StrokeVertices,
+    candidates: &'a [Candidate],
+    /// How many bridges each vertex may take: one per free end it is (two for a one-sample dot).
+    slots: HashMap<u32, u8>,
+    stroke_of: HashMap<u32, usize>,
+    stroke_width: f64,
+}
+
+impl<'a> Matching<'a> {
+    fn new(
+        vertices: &'a StrokeVertices,
+        free_ends: &[FreeEnd],
+        candidates: &'a [Candidate],
+        stroke_width: f64,
+    ) -> Self {
+        let mut slots: HashMap<u32, u8> = HashMap::new();
+        for end in free_ends {
+            *slots.entry(end.vertex).or_default() += 1;
+        }
+        Self {
+            vertices,
+            candidates,
+            slots,
+            stroke_of: free_ends.iter().map(|e| (e.vertex, e.stroke)).collect(),
+            stroke_width,
+        }
+    }
+
+    /// The gap the pen left, ink to ink: thinning ends every stroke half a pen width inside its
+    /// ink, so a bridge between two skeleton ends is a pen width longer than the gap on paper.
+    /// Ratios of gaps are ratios of these.
+    fn ink_gap(&self, candidate: &Candidate) -> f64 {
+        (candidate.length - self.stroke_width).max(0.0)
+    }
+
+    /// Matches ends greedily from the cheapest candidate, each end used once. With a typical gap,
+    /// a bridge may be at most [`BRIDGE_MAX_IN_TYPICAL_GAPS`] of it, or, when it closes a loop,
+    /// [`LOOP_GAP_MAX_IN_TYPICAL_GAPS`] under the conditions of [`Matching::closes_clearly`].
+    fn run(&self, typical_gap: Option<f64>) -> Vec<&'a Candidate> {
+        let mut groups = StrokeGroups::new(self.vertices);
+        let mut matched: Vec<&Candidate> = Vec::new();
+        let mut remaining = self.slots.clone();
+        for candidate in self.candidates {
+            let (length, a, b) = (candidate.length, candidate.a, candidate.b);
             // Each pair is a candidate once: `dedup` removed the copy a two-slot dot makes.
-            if length > longest || remaining[&a] == 0 || remaining[&b] == 0 {
+            if remaining[&a] == 0 || remaining[&b] == 0 {
                 continue;
             }
-            let (stroke_a, stroke_b) = (stroke_of[&a], stroke_of[&b]);
+            let (stroke_a, stroke_b) = (self.stroke_of[&a], self.stroke_of[&b]);
+            let closes_loop = groups.same(stroke_a, stroke_b);
+            let loop_length = groups.length(stroke_a) + length;
             // DECISION: a bridge that closes a loop must be short next to the loop: at most a
             // quarter of its length. A skip-stroke gap is a small part of the outline it
             // interrupts; an opening as wide as a quarter of the curve is drawn on purpose (an
             // open mouth, a "C"), and tiny loops of a few dashes are no shapes at all.
-            if groups.same(stroke_a, stroke_b)
-                && length > LOOP_GAP_MAX_SHARE * (groups.length(stroke_a) + length)
-            {
+            if closes_loop && length > LOOP_GAP_MAX_SHARE * loop_length {
                 continue;
+            }
+            if let Some(typical) = typical_gap {
+                let gap = self.ink_gap(candidate);
+                let within_limit = gap <= BRIDGE_MAX_IN_TYPICAL_GAPS * typical
+                    || (closes_loop
+                        && gap <= LOOP_GAP_MAX_IN_TYPICAL_GAPS * typical
+                        && self.closes_clearly(candidate, loop_length, &remaining));
+                if !within_limit {
+                    continue;
+                }
             }
             groups.join(stroke_a, stroke_b, length);
             *remaining.get_mut(&a).expect("free end") -= 1;
             *remaining.get_mut(&b).expect("free end") -= 1;
-            matched.push((length, a, b));
+            matched.push(candidate);
         }
         matched
-    };
-    // First pass: the drawing's typical gap. Second pass: the matching itself, with overlong
-    // bridges out of the running, so that they cannot take an end from a real gap.
-    let mut lengths: Vec<f64> = greedy_match(f64::INFINITY).iter().map(|m| m.0).collect();
-    if lengths.is_empty() {
-        return Vec::new();
     }
-    lengths.sort_by(f64::total_cmp);
-    let typical_gap = lengths[lengths.len() / 2].clamp(
-        TYPICAL_GAP_MIN_IN_SPACINGS * spacing,
-        TYPICAL_GAP_MAX_IN_SPACINGS * spacing,
-    );
-    greedy_match(BRIDGE_MAX_IN_TYPICAL_GAPS * typical_gap)
-        .into_iter()
-        .map(|m| (m.1, m.2))
-        .collect()
+
+    /// DECISION: the gap where the pen comes back to where it started is often the widest of an
+    /// outline, so a bridge that closes a loop may be longer than the others when it clearly is
+    /// that gap: a small part of the loop ([`LOOP_GAP_MAX_SHARE_WIDE`]), the two ends facing each
+    /// other (a straight bridge, or a corner), and no other free end still open nearer to either
+    /// end than the bridge is long (which would make the closing a guess between partners).
+    fn closes_clearly(
+        &self,
+        candidate: &Candidate,
+        loop_length: f64,
+        remaining: &HashMap<u32, u8>,
+    ) -> bool {
+        if candidate.length > LOOP_GAP_MAX_SHARE_WIDE * loop_length {
+            return false;
+        }
+        let positions = &self.vertices.positions;
+        let (pa, pb) = (
+            positions[candidate.a as usize],
+            positions[candidate.b as usize],
+        );
+        let reach = pa.distance(pb);
+        !remaining.iter().any(|(&v, &slots)| {
+            let p = positions[v as usize];
+            slots > 0
+                && v != candidate.a
+                && v != candidate.b
+                && (p.distance(pa) < reach || p.distance(pb) < reach)
+        })
+    }
 }
 
 /// Every Delaunay edge between two free ends that may be a bridge, cheapest first, each pair once.
@@ -119,15 +248,6 @@ fn bridge_candidates(
     let stroke_of: HashMap<u32, usize> = free_ends.iter().map(|e| (e.vertex, e.stroke)).collect();
     let outward_of: HashMap<u32, Option<Vec2>> =
         free_ends.iter().map(|e| (e.vertex, e.outward)).collect();
-    // How much a bridge from `vertex` towards `direction` turns away from where the pen was
-    // going: 0 straight on, 1 straight back; nothing for a dot.
-    let turn = |vertex: u32, direction: Vec2| -> f64 {
-        outward_of
-            .get(&vertex)
-            .copied()
-            .flatten()
-            .map_or(0.0, |outward| (1.0 - outward.dot(direction)) / 2.0)
-    };
     let mut candidates: Vec<Candidate> = Vec::new();
     for end in free_ends {
         for &other in delaunay.neighbours(end.vertex) {
@@ -137,40 +257,146 @@ fn bridge_candidates(
             if other <= end.vertex {
                 continue;
             }
-            // A stroke may close on itself only if it is long enough to be a loop: the paper's
-            // "more than two edges" before closing.
-            if other_stroke == end.stroke
-                && vertices.of_stroke[end.stroke].len() < MIN_SELF_BRIDGED_SAMPLES
-            {
-                continue;
+            let (outward_a, outward_b) = (outward_of[&end.vertex], outward_of[&other]);
+            if other_stroke == end.stroke {
+                // A stroke may close on itself only if it is long enough to be a loop: the
+                // paper's "more than two edges" before closing.
+                if vertices.of_stroke[end.stroke].len() < MIN_SELF_BRIDGED_SAMPLES {
+                    continue;
+                }
+                // DECISION: never bridge the two ends of one stroke that point the same way (a
+                // U-stroke's two ends, a finger tip): that seals the stroke on itself; a stroke
+                // that is a loop with a gap has ends that point at each other.
+                if let (Some(a), Some(b)) = (outward_a, outward_b) {
+                    if a.dot(b) > 0.0 {
+                        continue;
+                    }
+                }
             }
             // Gaps are measured between rims: a dot has the size of the dash it stands for.
             let rims = vertices.dot_radius.get(&end.vertex).unwrap_or(&0.0)
                 + vertices.dot_radius.get(&other).unwrap_or(&0.0);
-            let length = (positions[end.vertex as usize].distance(positions[other as usize])
-                - rims)
-                .max(0.0);
-            // DECISION: good continuation. A bridge is matched by its length times
-            // 1 + (turn at each end), the turn going from 0 (straight on) to 1 (straight back):
-            // at an acute tip the two arm ends are closer to each other than to the dash at the
-            // tip, but reaching each other means turning round; the tip continues both.
-            let direction = positions[other as usize] - positions[end.vertex as usize];
-            let unit = if direction.hypot() > 0.0 {
-                direction / direction.hypot()
-            } else {
-                Vec2::ZERO
+            let a = BridgeEnd {
+                at: positions[end.vertex as usize],
+                outward: outward_a,
             };
-            let cost = length * (1.0 + turn(end.vertex, unit) + turn(other, -unit));
-            candidates.push((cost, length, end.vertex, other));
+            let b = BridgeEnd {
+                at: positions[other as usize],
+                outward: outward_b,
+            };
+            if let Some(shape) = bridge_shape(a, b, rims) {
+                candidates.push(Candidate {
+                    cost: shape.cost,
+                    length: shape.length,
+                    a: end.vertex,
+                    b: other,
+                    corner: shape.corner,
+                });
+            }
         }
     }
-    candidates.sort_by(|a, b| {
-        a.0.total_cmp(&b.0)
-            .then(a.1.total_cmp(&b.1))
-            .then((a.2, a.3).cmp(&(b.2, b.3)))
+    candidates.sort_by(|x, y| {
+        x.cost
+            .total_cmp(&y.cost)
+            .then(x.length.total_cmp(&y.length))
+            .then((x.a, x.b).cmp(&(y.a, y.b)))
     });
-    candidates.dedup();
+    candidates.dedup_by(|x, y| (x.a, x.b) == (y.a, y.b));
     candidates
+}
+
+/// One end of a possible bridge: where it is and which way the pen was going (none for a dot).
+#[derive(Clone, Copy)]
+struct BridgeEnd {
+    at: Point,
+    outward: Option<Vec2>,
+}
+
+/// How a bridge would be drawn and what it costs.
+struct BridgeShape {
+    cost: f64,
+    /// The length of the drawn bridge (through its corner, if it has one), rim to rim.
+    length: f64,
+    corner: Option<Point>,
+}
+
+/// The way the pen most plausibly went across a gap between two ends, if any, and its cost.
+///
+/// DECISION: good continuation, in two shapes.
+/// - **Straight**: the chord between the ends, when neither end turns by more than
+///   [`MAX_STRAIGHT_TURN_DEGREES`] to follow it. Its cost is its length times
+///   exp(k·(θa² + θb²)), θ the turn at each end in radians: turning costs much more than length,
+///   so an end takes a straight partner up to about 1.5 times farther over one that turns by 35°
+///   or more, and strokes side by side are joined along their lines, not across the space
+///   between them.
+/// - **Corner**: when the two ends turn more than [`MIN_CORNER_TURN_DEGREES`] and the lines they
+///   were drawn along meet ahead of both, the pen lifted at a corner: the bridge runs from each
+///   end straight on to that meeting point (the corner, which is thus put back), and costs its
+///   length, since neither end turns.
+/// Ends whose lines do not meet ahead and that would turn sharply (two parallel lines ending side
+/// by side, the two ends of a U) are not a continuation: no bridge.
+fn bridge_shape(a: BridgeEnd, b: BridgeEnd, rims: f64) -> Option<BridgeShape> {
+    let chord = b.at - a.at;
+    let distance = chord.hypot();
+    let unit = if distance > 0.0 {
+        chord / distance
+    } else {
+        Vec2::ZERO
+    };
+    let turn = |outward: Option<Vec2>, direction: Vec2| -> f64 {
+        outward.map_or(0.0, |o| o.dot(direction).clamp(-1.0, 1.0).acos())
+    };
+    let (turn_a, turn_b) = (turn(a.outward, unit), turn(b.outward, -unit));
+    let straight_limit = MAX_STRAIGHT_TURN_DEGREES.to_radians();
+    let straight = (turn_a <= straight_limit && turn_b <= straight_limit).then(|| {
+        let length = (distance - rims).max(0.0);
+        BridgeShape {
+            cost: length * (TURN_COST * (turn_a * turn_a + turn_b * turn_b)).exp(),
+            length,
+            corner: None,
+        }
+    });
+    let corner = if turn_a.max(turn_b) > MIN_CORNER_TURN_DEGREES.to_radians() {
+        a.outward
+            .zip(b.outward)
+            .and_then(|(ua, ub)| rays_meet(a.at, ua, b.at, ub))
+            .map(|(corner, length)| BridgeShape {
+                cost: length,
+                length,
+                corner: Some(corner),
+            })
+    } else {
+        None
+    };
+    match (straight, corner) {
+        (Some(s), Some(c)) => Some(if c.cost < s.cost { c } else { s }),
+        (s, c) => s.or(c),
+    }
+}
+
+/// Where the rays from `a` along `ua` and from `b` along `ub` meet ahead of both, and the length
+/// of the path a → meeting point → b; none for (nearly) parallel rays.
+fn rays_meet(a: Point, ua: Vec2, b: Point, ub: Vec2) -> Option<(Point, f64)> {
+    let denominator = ua.cross(ub);
+    if denominator.abs() < MIN_RAY_CROSSING_SINE {
+        return None;
+    }
+    let d = b - a;
+    let (s, t) = (d.cross(ub) / denominator, d.cross(ua) / denominator);
+    // A stroke that runs right up to the corner ends on it: its ray starts at the meeting point,
+    // give or take the skeleton's wobble. The corner is then that end itself.
+    let slack = CORNER_AT_END_SLACK * d.hypot();
+    if s < -slack || t < -slack {
+        return None;
+    }
+    let corner = if s <= 0.0 {
+        a
+    } else if t <= 0.0 {
+        b
+    } else {
+        a + ua * s
+    };
+    Some((corner, a.distance(corner) + corner.distance(b)))
 }
 
 /// Strokes joined by accepted bridges, with the total length of each group (strokes plus
