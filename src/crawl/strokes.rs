@@ -533,9 +533,11 @@ mod tests {
 
     #[test]
     fn two_open_strokes_far_apart_are_not_bridged() {
+        // 44 px apart on one line: a 41 px gap on paper with a 3 px pen, beyond twice the largest
+        // typical gap (three spacings).
         let strokes = vec![
             open(&[(0.0, 0.0), (4.0, 0.0), (8.0, 0.0), (12.0, 0.0), (16.0, 0.0)]),
-            open(&[(40.0, 0.0), (44.0, 0.0), (48.0, 0.0), (52.0, 0.0)]),
+            open(&[(60.0, 0.0), (64.0, 0.0), (68.0, 0.0), (72.0, 0.0)]),
         ];
         let curves = connect(&strokes, Method::Strokes, 4.0, 3.0);
         assert_eq!(curves.len(), 2, "{curves:?}");
