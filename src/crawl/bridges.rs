@@ -333,6 +333,7 @@ struct BridgeShape {
 ///   were drawn along meet ahead of both, the pen lifted at a corner: the bridge runs from each
 ///   end straight on to that meeting point (the corner, which is thus put back), and costs its
 ///   length, since neither end turns.
+///
 /// Ends whose lines do not meet ahead and that would turn sharply (two parallel lines ending side
 /// by side, the two ends of a U) are not a continuation: no bridge.
 fn bridge_shape(a: BridgeEnd, b: BridgeEnd, rims: f64) -> Option<BridgeShape> {

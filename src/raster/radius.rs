@@ -1,0 +1,98 @@
+//! The ink's radius at a point: the distance from a pixel centre to the nearest paper, found by a
+//! search of the pixels around it (a local, exact Euclidean distance transform, done only where it
+//! is asked for, so it costs nothing for the rest of the page).
+
+use kurbo::Point;
+
+use super::bitmap::Bitmap;
+
+/// The radius of the ink around `centre` (a pixel centre, x + 0.5, y + 0.5): the distance to the
+/// nearest paper pixel's centre less half a pixel (the ink's edge lies between the two), at most
+/// `limit` (the search stops there). Outside the image counts as paper; a point on paper has
+/// radius 0.
+pub fn ink_radius(mask: &Bitmap, centre: Point, limit: f64) -> f64 {
+    let (cx, cy) = (centre.x.floor() as isize, centre.y.floor() as isize);
+    if !mask.get_signed(cx, cy) {
+        return 0.0;
+    }
+    let reach = limit.max(0.0).ceil() as isize + 1;
+    let mut nearest_squared = f64::INFINITY;
+    // Rings of growing size: once a ring starts farther than the nearest paper found, stop.
+    for ring in 1..=reach {
+        if (ring as f64 - 0.5).powi(2) > nearest_squared {
+            break;
+        }
+        for (dx, dy) in ring_offsets(ring) {
+            if !mask.get_signed(cx + dx, cy + dy) {
+                let squared = (dx * dx + dy * dy) as f64;
+                nearest_squared = nearest_squared.min(squared);
+            }
+        }
+    }
+    (nearest_squared.sqrt() - 0.5).clamp(0.0, limit.max(0.0))
+}
+
+/// The offsets on the square ring at Chebyshev distance `ring` from the origin.
+fn ring_offsets(ring: isize) -> impl Iterator<Item = (isize, isize)> {
+    (-ring..=ring).flat_map(move |d| {
+        [(d, -ring), (d, ring)].into_iter().chain(
+            (d > -ring && d < ring)
+                .then_some([(-ring, d), (ring, d)])
+                .into_iter()
+                .flatten(),
+        )
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_radius_is_the_distance_to_the_paper() {
+        let mask = Bitmap::from_grid(
+            "
+            .........
+            .#######.
+            .#######.
+            .#######.
+            .#######.
+            .#######.
+            .........",
+        );
+        // The middle of a 5-px-high band: 3 px to the paper row, less half a pixel.
+        assert_eq!(ink_radius(&mask, Point::new(4.5, 3.5), 10.0), 2.5);
+        assert_eq!(ink_radius(&mask, Point::new(1.5, 1.5), 10.0), 0.5);
+        assert_eq!(ink_radius(&mask, Point::new(0.5, 0.5), 10.0), 0.0);
+        assert_eq!(ink_radius(&mask, Point::new(4.5, 3.5), 1.0), 1.0);
+    }
+
+    #[test]
+    fn diagonal_paper_counts_at_its_true_distance() {
+        let mask = Bitmap::from_grid(
+            "
+            #####
+            #####
+            #####
+            #####
+            ####.",
+        );
+        // Everything but the corner is ink, and outside the image is paper: from the centre the
+        // nearest paper is the outside, 3 px away.
+        assert_eq!(ink_radius(&mask, Point::new(2.5, 2.5), 10.0), 2.5);
+        // From (3, 3) the corner pixel is √2 away.
+        let r = ink_radius(&mask, Point::new(3.5, 3.5), 10.0);
+        assert!((r - (2f64.sqrt() - 0.5)).abs() < 1e-12, "{r}");
+    }
+
+    #[test]
+    fn every_ring_offset_is_on_its_ring_once() {
+        for ring in 1..5 {
+            let offsets: Vec<_> = ring_offsets(ring).collect();
+            assert_eq!(offsets.len() as isize, 8 * ring);
+            let unique: std::collections::HashSet<_> = offsets.iter().collect();
+            assert_eq!(unique.len(), offsets.len());
+            assert!(offsets.iter().all(|&(x, y)| x.abs().max(y.abs()) == ring));
+        }
+    }
+}
