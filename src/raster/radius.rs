@@ -6,26 +6,27 @@ use kurbo::Point;
 
 use super::bitmap::Bitmap;
 
-/// The radius of the ink around `centre` (a pixel centre, x + 0.5, y + 0.5): the distance to the
-/// nearest paper pixel's centre less half a pixel (the ink's edge lies between the two), at most
-/// `limit` (the search stops there). Outside the image counts as paper; a point on paper has
-/// radius 0.
-pub fn ink_radius(mask: &Bitmap, centre: Point, limit: f64) -> f64 {
-    let (cx, cy) = (centre.x.floor() as isize, centre.y.floor() as isize);
+/// The radius of the ink around `point` (sub-pixel): the distance to the nearest paper pixel's
+/// centre less half a pixel (the ink's edge lies between the two), at most `limit` (the search
+/// stops there). Outside the image counts as paper; a point on a paper pixel has radius 0.
+pub fn ink_radius(mask: &Bitmap, point: Point, limit: f64) -> f64 {
+    let (cx, cy) = (point.x.floor() as isize, point.y.floor() as isize);
     if !mask.get_signed(cx, cy) {
         return 0.0;
     }
-    let reach = limit.max(0.0).ceil() as isize + 1;
+    let reach = limit.max(0.0).ceil() as isize + 2;
     let mut nearest_squared = f64::INFINITY;
-    // Rings of growing size: once a ring starts farther than the nearest paper found, stop.
+    // Square rings of growing size around the point's pixel: a ring `r` away holds no pixel
+    // centre nearer than r − 1 to the point, so once that is beyond the nearest paper, stop.
     for ring in 1..=reach {
-        if (ring as f64 - 0.5).powi(2) > nearest_squared {
+        if ((ring - 1) as f64).powi(2) > nearest_squared {
             break;
         }
         for (dx, dy) in ring_offsets(ring) {
-            if !mask.get_signed(cx + dx, cy + dy) {
-                let squared = (dx * dx + dy * dy) as f64;
-                nearest_squared = nearest_squared.min(squared);
+            let (x, y) = (cx + dx, cy + dy);
+            if !mask.get_signed(x, y) {
+                let centre = Point::new(x as f64 + 0.5, y as f64 + 0.5);
+                nearest_squared = nearest_squared.min(point.distance_squared(centre));
             }
         }
     }
@@ -77,12 +78,15 @@ mod tests {
             #####
             ####.",
         );
-        // Everything but the corner is ink, and outside the image is paper: from the centre the
-        // nearest paper is the outside, 3 px away.
-        assert_eq!(ink_radius(&mask, Point::new(2.5, 2.5), 10.0), 2.5);
-        // From (3, 3) the corner pixel is √2 away.
-        let r = ink_radius(&mask, Point::new(3.5, 3.5), 10.0);
-        assert!((r - (2f64.sqrt() - 0.5)).abs() < 1e-12, "{r}");
+        // Everything but the corner is ink, and outside the image is paper: from (1, 1) the
+        // nearest paper is the outside, 2 px away; from the centre the corner pixel, √8 away.
+        assert_eq!(ink_radius(&mask, Point::new(1.5, 1.5), 10.0), 1.5);
+        let r = ink_radius(&mask, Point::new(2.5, 2.5), 10.0);
+        assert!((r - (8f64.sqrt() - 0.5)).abs() < 1e-12, "{r}");
+        // Between pixel centres the distance is measured from the point itself: 2.5 px up to
+        // the row outside.
+        let r = ink_radius(&mask, Point::new(2.5, 2.0), 10.0);
+        assert!((r - 2.0).abs() < 1e-12, "{r}");
     }
 
     #[test]
