@@ -1,27 +1,32 @@
-//! Gap bridges: which free stroke ends (the pen's lift-off points) are joined across a pen lift,
-//! matched greedily from the cheapest bridge (shortest, straightest) along Delaunay edges, each end
-//! used once, with bridges much longer than the drawing's typical gap left out.
+//! Gap bridges: which stroke ends are joined across a pen lift. Free ends (the pen's lift-off
+//! points) and T-ends (a stroke that ran into another one, taken at the junction point) are
+//! matched greedily from the cheapest bridge (shortest, straightest), each end used once, with
+//! bridges much longer than the drawing's typical gap left out.
 
 use std::collections::HashMap;
 
 use kurbo::{Point, Vec2};
 
-use super::neighbours::NeighbourGraph;
 use super::strokes::StrokeVertices;
 use crate::geometry::polyline::polyline_length;
 use crate::geometry::UnionFind;
 use crate::strokes::MIN_LOOP_SAMPLES;
 
-/// A free stroke end: a vertex and which end of which stroke it is.
+/// A stroke end that may take a bridge.
 #[derive(Clone, Copy, Debug)]
-pub(super) struct FreeEnd {
+pub(super) struct BridgeableEnd {
     pub(super) vertex: u32,
     pub(super) stroke: usize,
-    /// The unit direction in which the pen was moving when it lifted here; `None` for a dot.
+    /// The unit direction in which the pen was moving at this end; `None` for a dot.
     pub(super) outward: Option<Vec2>,
+    /// Where the curve goes on from: the end itself, or for a T-end the junction point on the
+    /// stroke it ran into.
+    pub(super) at: Point,
+    /// Whether it is a T-end.
+    pub(super) attached: bool,
 }
 
-/// A possible bridge between two free ends (vertices `a < b`).
+/// A possible bridge between two ends (vertices `a < b`).
 struct Candidate {
     cost: f64,
     /// The drawn length, rim to rim.
@@ -30,19 +35,21 @@ struct Candidate {
     b: u32,
     /// The corner the bridge is drawn through, if it is one.
     corner: Option<Point>,
+    /// Whether both ends are free ends (a pen lift, which the typical gap is measured on).
+    between_free_ends: bool,
 }
 
-/// An accepted bridge: its two end vertices and, for a bridge across a corner, the corner point
-/// the curve goes through between them.
-#[derive(Clone, Copy, Debug)]
+/// An accepted bridge: its two end vertices and the points the curve goes through between them,
+/// in order from `a` to `b` (a T-end's junction point, a corner put back).
+#[derive(Clone, Debug)]
 pub(super) struct Bridge {
     pub(super) a: u32,
     pub(super) b: u32,
-    pub(super) corner: Option<Point>,
+    pub(super) via: Vec<Point>,
 }
 
-/// Chooses the bridges across pen lifts: pairs of free stroke ends joined by a Delaunay edge,
-/// matched greedily from the shortest, each end used once.
+/// Chooses the bridges across pen lifts: pairs of ends at most a few typical gaps apart, matched
+/// greedily from the cheapest, each end used once.
 ///
 /// DECISION: greedy shortest-first matching rather than the crawl's own greedy choice, so that an
 /// end cannot be taken by a farther end that happens to be crawled first (the end of an open
@@ -97,18 +104,23 @@ const MIN_SELF_BRIDGED_SAMPLES: usize = MIN_LOOP_SAMPLES;
 
 pub(super) fn match_gap_bridges(
     vertices: &StrokeVertices,
-    delaunay: &NeighbourGraph,
-    free_ends: &[FreeEnd],
+    ends: &[BridgeableEnd],
     spacing: f64,
     stroke_width: f64,
 ) -> Vec<Bridge> {
-    let candidates = bridge_candidates(vertices, delaunay, free_ends);
-    let matching = Matching::new(vertices, free_ends, &candidates, stroke_width);
+    // No bridge can be longer than the widest loop-closing gap allowed with the largest typical
+    // gap, rim to rim, plus the pen width thinning took off the two ends.
+    let reach = LOOP_GAP_MAX_IN_TYPICAL_GAPS * TYPICAL_GAP_MAX_IN_SPACINGS * spacing
+        + stroke_width
+        + 2.0 * vertices.dot_radius.values().fold(0.0, |a: f64, &b| a.max(b));
+    let candidates = bridge_candidates(vertices, ends, reach);
+    let matching = Matching::new(vertices, ends, &candidates, stroke_width);
     // First pass: the drawing's typical gap. Second pass: the matching itself, with overlong
     // bridges out of the running, so that they cannot take an end from a real gap.
     let mut gaps: Vec<f64> = matching
         .run(None)
         .iter()
+        .filter(|m| m.between_free_ends)
         .map(|m| matching.ink_gap(m))
         .collect();
     if gaps.is_empty() {
@@ -119,18 +131,29 @@ pub(super) fn match_gap_bridges(
         TYPICAL_GAP_MIN_IN_SPACINGS * spacing,
         TYPICAL_GAP_MAX_IN_SPACINGS * spacing,
     );
+    let junction_of: HashMap<u32, Point> = ends
+        .iter()
+        .filter(|end| end.attached)
+        .map(|end| (end.vertex, end.at))
+        .collect();
     matching
         .run(Some(typical_gap))
         .into_iter()
-        .map(|m| Bridge {
-            a: m.a,
-            b: m.b,
-            corner: m.corner,
+        .map(|m| {
+            let mut via: Vec<Point> = junction_of.get(&m.a).copied().into_iter().collect();
+            via.extend(m.corner);
+            via.extend(junction_of.get(&m.b).copied());
+            via.dedup();
+            Bridge {
+                a: m.a,
+                b: m.b,
+                via,
+            }
         })
         .collect()
 }
 
-/// The greedy matching of free ends, cheapest bridge first.
+/// The greedy matching of ends, cheapest bridge first.
 struct Matching<'a> {
     vertices: &'a StrokeVertices,
     candidates: &'a [Candidate],
@@ -143,19 +166,19 @@ struct Matching<'a> {
 impl<'a> Matching<'a> {
     fn new(
         vertices: &'a StrokeVertices,
-        free_ends: &[FreeEnd],
+        ends: &[BridgeableEnd],
         candidates: &'a [Candidate],
         stroke_width: f64,
     ) -> Self {
         let mut slots: HashMap<u32, u8> = HashMap::new();
-        for end in free_ends {
+        for end in ends {
             *slots.entry(end.vertex).or_default() += 1;
         }
         Self {
             vertices,
             candidates,
             slots,
-            stroke_of: free_ends.iter().map(|e| (e.vertex, e.stroke)).collect(),
+            stroke_of: ends.iter().map(|e| (e.vertex, e.stroke)).collect(),
             stroke_width,
         }
     }
@@ -238,61 +261,52 @@ impl<'a> Matching<'a> {
     }
 }
 
-/// Every Delaunay edge between two free ends that may be a bridge, cheapest first, each pair once.
+/// Every pair of ends at most `reach` apart that may be a bridge, cheapest first, each pair once.
 fn bridge_candidates(
     vertices: &StrokeVertices,
-    delaunay: &NeighbourGraph,
-    free_ends: &[FreeEnd],
+    ends: &[BridgeableEnd],
+    reach: f64,
 ) -> Vec<Candidate> {
-    let positions = &vertices.positions;
-    let stroke_of: HashMap<u32, usize> = free_ends.iter().map(|e| (e.vertex, e.stroke)).collect();
-    let outward_of: HashMap<u32, Option<Vec2>> =
-        free_ends.iter().map(|e| (e.vertex, e.outward)).collect();
     let mut candidates: Vec<Candidate> = Vec::new();
-    for end in free_ends {
-        for &other in delaunay.neighbours(end.vertex) {
-            let Some(&other_stroke) = stroke_of.get(&other) else {
-                continue;
-            };
-            if other <= end.vertex {
+    for (a, b) in ends_within(ends, reach) {
+        if a.stroke == b.stroke {
+            // A stroke may close on itself only if it is long enough to be a loop: the paper's
+            // "more than two edges" before closing.
+            if vertices.of_stroke[a.stroke].len() < MIN_SELF_BRIDGED_SAMPLES {
                 continue;
             }
-            let (outward_a, outward_b) = (outward_of[&end.vertex], outward_of[&other]);
-            if other_stroke == end.stroke {
-                // A stroke may close on itself only if it is long enough to be a loop: the
-                // paper's "more than two edges" before closing.
-                if vertices.of_stroke[end.stroke].len() < MIN_SELF_BRIDGED_SAMPLES {
+            // DECISION: never bridge the two ends of one stroke that point the same way (a
+            // U-stroke's two ends, a finger tip): that seals the stroke on itself; a stroke that
+            // is a loop with a gap has ends that point at each other.
+            if let (Some(ua), Some(ub)) = (a.outward, b.outward) {
+                if ua.dot(ub) > 0.0 {
                     continue;
                 }
-                // DECISION: never bridge the two ends of one stroke that point the same way (a
-                // U-stroke's two ends, a finger tip): that seals the stroke on itself; a stroke
-                // that is a loop with a gap has ends that point at each other.
-                if let (Some(a), Some(b)) = (outward_a, outward_b) {
-                    if a.dot(b) > 0.0 {
-                        continue;
-                    }
-                }
             }
-            // Gaps are measured between rims: a dot has the size of the dash it stands for.
-            let rims = vertices.dot_radius.get(&end.vertex).unwrap_or(&0.0)
-                + vertices.dot_radius.get(&other).unwrap_or(&0.0);
-            let a = BridgeEnd {
-                at: positions[end.vertex as usize],
-                outward: outward_a,
-            };
-            let b = BridgeEnd {
-                at: positions[other as usize],
-                outward: outward_b,
-            };
-            if let Some(shape) = bridge_shape(a, b, rims) {
-                candidates.push(Candidate {
-                    cost: shape.cost,
-                    length: shape.length,
-                    a: end.vertex,
-                    b: other,
-                    corner: shape.corner,
-                });
-            }
+        }
+        // Gaps are measured between rims: a dot has the size of the dash it stands for.
+        let rims = vertices.dot_radius.get(&a.vertex).unwrap_or(&0.0)
+            + vertices.dot_radius.get(&b.vertex).unwrap_or(&0.0);
+        let shape = bridge_shape(
+            BridgeEnd {
+                at: a.at,
+                outward: a.outward,
+            },
+            BridgeEnd {
+                at: b.at,
+                outward: b.outward,
+            },
+            rims,
+        );
+        if let Some(shape) = shape {
+            candidates.push(Candidate {
+                cost: shape.cost,
+                length: shape.length,
+                a: a.vertex,
+                b: b.vertex,
+                corner: shape.corner,
+                between_free_ends: !a.attached && !b.attached,
+            });
         }
     }
     candidates.sort_by(|x, y| {
@@ -303,6 +317,29 @@ fn bridge_candidates(
     });
     candidates.dedup_by(|x, y| (x.a, x.b) == (y.a, y.b));
     candidates
+}
+
+/// Every pair of ends (the one with the smaller vertex first, each pair once) at most `reach`
+/// apart, in a deterministic order: a sweep over the ends sorted by x.
+fn ends_within(ends: &[BridgeableEnd], reach: f64) -> Vec<(BridgeableEnd, BridgeableEnd)> {
+    let mut sorted: Vec<BridgeableEnd> = ends.to_vec();
+    sorted.sort_by(|a, b| a.at.x.total_cmp(&b.at.x).then(a.vertex.cmp(&b.vertex)));
+    let mut pairs = Vec::new();
+    for (i, end) in sorted.iter().enumerate() {
+        for other in &sorted[i + 1..] {
+            if other.at.x - end.at.x > reach {
+                break;
+            }
+            if other.vertex != end.vertex && end.at.distance(other.at) <= reach {
+                pairs.push(if end.vertex < other.vertex {
+                    (*end, *other)
+                } else {
+                    (*other, *end)
+                });
+            }
+        }
+    }
+    pairs
 }
 
 /// One end of a possible bridge: where it is and which way the pen was going (none for a dot).

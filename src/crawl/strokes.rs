@@ -10,13 +10,12 @@
 //! decides, with the paper's seeds, candidates, `d > d1` stop and a closing rule, how the strokes
 //! chain into shapes. [`Method::Points`] keeps the paper's plain crawl for comparison.
 
-use std::collections::{HashMap, VecDeque};
+use std::collections::{HashMap, HashSet, VecDeque};
 
 use kurbo::{Point, Vec2};
 
 use super::algorithm::Chain;
-use super::bridges::{match_gap_bridges, FreeEnd};
-use super::neighbours::NeighbourGraph;
+use super::bridges::{match_gap_bridges, BridgeableEnd};
 use super::reconstruct::{self, canonical_orientation};
 use crate::geometry::polyline::polyline_length;
 use crate::geometry::Polyline;
@@ -248,9 +247,8 @@ impl StrokeVertices {
 /// the strokes' vertices.
 struct StrokeGraph {
     edges: Vec<(u32, u32)>,
-    free_ends: Vec<FreeEnd>,
-    /// Points where a chain ending at this vertex should be extended to (T-junctions).
-    attachment: HashMap<u32, Point>,
+    /// Free ends and T-ends.
+    ends: Vec<BridgeableEnd>,
 }
 
 impl StrokeGraph {
@@ -259,8 +257,7 @@ impl StrokeGraph {
         let positions = &vertices.positions;
         let mut graph = Self {
             edges: Vec::new(),
-            free_ends: Vec::new(),
-            attachment: HashMap::new(),
+            ends: Vec::new(),
         };
         for (s, (stroke, of_stroke)) in strokes.iter().zip(&vertices.of_stroke).enumerate() {
             graph
@@ -282,16 +279,17 @@ impl StrokeGraph {
                 end_direction(&reversed, reach),
             ];
             for ((end, vertex), outward) in stroke.ends.iter().zip([first, last]).zip(outward) {
-                match *end {
-                    StrokeEnd::Free => graph.free_ends.push(FreeEnd {
-                        vertex,
-                        stroke: s,
-                        outward,
-                    }),
-                    StrokeEnd::Attached(point) => {
-                        graph.attachment.insert(vertex, point);
-                    }
-                }
+                let (at, attached) = match *end {
+                    StrokeEnd::Free => (positions[vertex as usize], false),
+                    StrokeEnd::Attached(junction) => (junction, true),
+                };
+                graph.ends.push(BridgeableEnd {
+                    vertex,
+                    stroke: s,
+                    outward,
+                    at,
+                    attached,
+                });
             }
         }
         graph
@@ -302,22 +300,20 @@ impl StrokeGraph {
 pub fn connect_strokes(strokes: &[Stroke], spacing: f64, stroke_width: f64) -> Vec<Polyline> {
     let vertices = StrokeVertices::new(strokes, spacing);
     let positions = &vertices.positions;
-    let Ok(delaunay) = NeighbourGraph::delaunay(positions) else {
-        return Vec::new(); // pixel coordinates are always finite and in range
-    };
-    let StrokeGraph {
-        mut edges,
-        free_ends,
-        attachment,
-    } = StrokeGraph::new(strokes, &vertices, spacing);
-    let bridges = match_gap_bridges(&vertices, &delaunay, &free_ends, spacing, stroke_width);
-    edges.extend(bridges.iter().map(|bridge| (bridge.a, bridge.b)));
-    let corners: HashMap<(u32, u32), Point> = bridges
+    let StrokeGraph { mut edges, ends } = StrokeGraph::new(strokes, &vertices, spacing);
+    let bridges = match_gap_bridges(&vertices, &ends, spacing, stroke_width);
+    let bridged: HashSet<u32> = bridges.iter().flat_map(|b| [b.a, b.b]).collect();
+    // T-ends that took no bridge end on the stroke they ran into.
+    let attachment: HashMap<u32, Point> = ends
         .iter()
-        .filter_map(|bridge| {
-            let key = (bridge.a.min(bridge.b), bridge.a.max(bridge.b));
-            bridge.corner.map(|corner| (key, corner))
-        })
+        .filter(|end| end.attached && !bridged.contains(&end.vertex))
+        .map(|end| (end.vertex, end.at))
+        .collect();
+    edges.extend(bridges.iter().map(|bridge| (bridge.a, bridge.b)));
+    let vias: HashMap<(u32, u32), Vec<Point>> = bridges
+        .into_iter()
+        .filter(|bridge| !bridge.via.is_empty())
+        .map(|bridge| ((bridge.a, bridge.b), bridge.via))
         .collect();
     // DECISION: no `d > d1` stop here. Every vertex of the stroke + bridge graph has at most two
     // edges (a stroke's own, and one bridge per free end), so its components are already paths
@@ -326,7 +322,7 @@ pub fn connect_strokes(strokes: &[Stroke], spacing: f64, stroke_width: f64) -> V
     components(positions.len(), &edges)
         .into_iter()
         .filter(|chain| chain.vertices.len() >= 2)
-        .map(|chain| chain_to_curve(chain, &vertices, &attachment, &corners))
+        .map(|chain| chain_to_curve(chain, &vertices, &attachment, &vias))
         .collect()
 }
 
@@ -389,16 +385,24 @@ fn chain_to_curve(
     chain: Chain,
     vertices: &StrokeVertices,
     attachment: &HashMap<u32, Point>,
-    corners: &HashMap<(u32, u32), Point>,
+    vias: &HashMap<(u32, u32), Vec<Point>>,
 ) -> Polyline {
     let positions = &vertices.positions;
     let order = canonical_orientation(chain.vertices, chain.closed);
     let mut points = Vec::with_capacity(order.len() + 2);
-    let corner_between =
-        |a: u32, b: u32| -> Option<Point> { corners.get(&(a.min(b), a.max(b))).copied() };
+    // The points a bridge goes through, in the order the chain crosses it.
+    let via_between = |a: u32, b: u32| -> Vec<Point> {
+        if let Some(via) = vias.get(&(a, b)) {
+            via.clone()
+        } else if let Some(via) = vias.get(&(b, a)) {
+            via.iter().rev().copied().collect()
+        } else {
+            Vec::new()
+        }
+    };
     for (k, &v) in order.iter().enumerate() {
         if k > 0 {
-            points.extend(corner_between(order[k - 1], v));
+            points.extend(via_between(order[k - 1], v));
         }
         let Some(&(a, b)) = vertices.dot_dash.get(&v) else {
             points.push(positions[v as usize]);
@@ -421,7 +425,7 @@ fn chain_to_curve(
         }
     }
     if chain.closed && order.len() > 2 {
-        points.extend(corner_between(order[order.len() - 1], order[0]));
+        points.extend(via_between(order[order.len() - 1], order[0]));
     }
     if !chain.closed {
         if let Some(&p) = attachment.get(&order[0]) {
