@@ -114,6 +114,14 @@ pub(super) fn match_gap_bridges(
         + stroke_width
         + 2.0 * vertices.dot_radius.values().fold(0.0, |a: f64, &b| a.max(b));
     let candidates = bridge_candidates(vertices, ends, reach);
+    if std::env::var_os("BRDBG").is_some() {
+        for e in ends {
+            eprintln!("end v{} s{} at ({:.1},{:.1}) att={} out={:?} pts {:?}", e.vertex, e.stroke, e.at.x, e.at.y, e.attached, e.outward.map(|o| ((o.x * 100.0).round() / 100.0, (o.y * 100.0).round() / 100.0)), vertices.of_stroke[e.stroke].iter().map(|&v| (vertices.positions[v as usize].x.round(), vertices.positions[v as usize].y.round())).collect::<Vec<_>>());
+        }
+        for c in &candidates {
+            eprintln!("cand v{}-v{} cost {:.1} len {:.1} corner {:?}", c.a, c.b, c.cost, c.length, c.corner.is_some());
+        }
+    }
     let matching = Matching::new(vertices, ends, &candidates, stroke_width);
     // First pass: the drawing's typical gap. Second pass: the matching itself, with overlong
     // bridges out of the running, so that they cannot take an end from a real gap.

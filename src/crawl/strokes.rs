@@ -44,32 +44,46 @@ const END_EXTENSION_IN_PEN_WIDTHS: f64 = 0.5;
 const DOT_MAX_LENGTH_IN_SPACINGS: f64 = 2.0;
 
 /// The direction in which the pen left a stroke end is measured over this length of the stroke
-/// (and the turn over the next as much, to correct for its curvature): the last sample alone
-/// wobbles.
+/// (and the turn over the next as much, to correct for its curvature).
 const END_DIRECTION_REACH_IN_SPACINGS: f64 = 1.0;
+
+/// ... starting this many pen widths in from the end: within half a pen width of its end the
+/// skeleton of a stroke is the thinned round cap of the pen, which hooks to either side (and at a
+/// sharp corner drawn up to its tip, along the other arm).
+const END_DIRECTION_SKIP_IN_PEN_WIDTHS: f64 = 0.5;
 
 /// A stroke turning by more than this (radians) over its last two reaches has a corner there: its
 /// end direction is not extrapolated through it.
 const MAX_EXTRAPOLATED_TURN: f64 = std::f64::consts::FRAC_PI_3;
 
 /// The unit direction in which the pen was moving when it left the stroke at `points[0]` (the
-/// points ordered from that end inwards): the chord over `reach` of the stroke, turned on by half
-/// the turn between it and the chord over the next `reach`, so that the end of an arc points along
-/// its tangent, not along a chord that lags behind it. `None` for a stroke of one point.
-fn end_direction(points: &[Point], reach: f64) -> Option<Vec2> {
-    let end = *points.first()?;
-    let near = point_at_length(points, reach);
-    let chord = end - near;
+/// points ordered from that end inwards): the chord over `reach` of the stroke that starts `skip`
+/// in from the end (at most a third of the stroke in), turned on by the turn the stroke makes
+/// per length over the next `reach` times the distance back to the end, so that the end of an arc
+/// points along its tangent, not along a chord that lags behind it. `None` for a stroke of one
+/// point.
+fn end_direction(points: &[Point], reach: f64, skip: f64) -> Option<Vec2> {
+    let length = polyline_length(points, false);
+    let skip = skip.min(length / 3.0);
+    let start = point_at_length(points, skip);
+    let near = point_at_length(points, skip + reach);
+    let chord = start - near;
     if chord.hypot() == 0.0 {
-        return None;
+        let whole = *points.first()? - *points.last()?;
+        return (whole.hypot() > 0.0).then(|| whole / whole.hypot());
     }
-    let far = point_at_length(points, 2.0 * reach);
+    let far = point_at_length(points, skip + 2.0 * reach);
     let previous = near - far;
     let mut direction = chord / chord.hypot();
     if previous.hypot() > 0.25 * chord.hypot() {
         let turn = previous.cross(chord).atan2(previous.dot(chord));
         if turn.abs() < MAX_EXTRAPOLATED_TURN {
-            let (sin, cos) = (0.5 * turn).sin_cos();
+            // The turn between the two chords happens over about one reach; the tangent at the
+            // end lies skip + half a reach beyond the middle of the near chord.
+            let extrapolated = turn * (skip + 0.5 * chord.hypot()) / chord.hypot().max(1e-9);
+            let (sin, cos) = extrapolated
+                .clamp(-MAX_EXTRAPOLATED_TURN, MAX_EXTRAPOLATED_TURN)
+                .sin_cos();
             direction = Vec2::new(
                 direction.x * cos - direction.y * sin,
                 direction.x * sin + direction.y * cos,
@@ -252,8 +266,9 @@ struct StrokeGraph {
 }
 
 impl StrokeGraph {
-    fn new(strokes: &[Stroke], vertices: &StrokeVertices, spacing: f64) -> Self {
+    fn new(strokes: &[Stroke], vertices: &StrokeVertices, spacing: f64, stroke_width: f64) -> Self {
         let reach = END_DIRECTION_REACH_IN_SPACINGS * spacing;
+        let skip = END_DIRECTION_SKIP_IN_PEN_WIDTHS * stroke_width;
         let positions = &vertices.positions;
         let mut graph = Self {
             edges: Vec::new(),
@@ -275,8 +290,8 @@ impl StrokeGraph {
             let along: Vec<Point> = of_stroke.iter().map(|&v| positions[v as usize]).collect();
             let reversed: Vec<Point> = along.iter().rev().copied().collect();
             let outward = [
-                end_direction(&along, reach),
-                end_direction(&reversed, reach),
+                end_direction(&along, reach, skip),
+                end_direction(&reversed, reach, skip),
             ];
             for ((end, vertex), outward) in stroke.ends.iter().zip([first, last]).zip(outward) {
                 let (at, attached) = match *end {
@@ -300,7 +315,7 @@ impl StrokeGraph {
 pub fn connect_strokes(strokes: &[Stroke], spacing: f64, stroke_width: f64) -> Vec<Polyline> {
     let vertices = StrokeVertices::new(strokes, spacing);
     let positions = &vertices.positions;
-    let StrokeGraph { mut edges, ends } = StrokeGraph::new(strokes, &vertices, spacing);
+    let StrokeGraph { mut edges, ends } = StrokeGraph::new(strokes, &vertices, spacing, stroke_width);
     let bridges = match_gap_bridges(&vertices, &ends, spacing, stroke_width);
     let bridged: HashSet<u32> = bridges.iter().flat_map(|b| [b.a, b.b]).collect();
     // T-ends that took no bridge end on the stroke they ran into.
