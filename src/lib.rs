@@ -55,12 +55,3 @@ pub use output::svg::{to_svg, CurvePath, Drawing};
 pub use points::read::{parse_points, PointFile, PointFileError};
 pub use raster::binarize::{BinarizeOptions, ThresholdMethod};
 pub use trace::{trace, trace_file, TraceError, TraceFileError, TraceOptions, TraceReport, Traced};
-
-/// Experiment knob (temporary): a constant overridable by the environment variable `CT_<name>`.
-#[doc(hidden)]
-pub fn tune(name: &str, default: f64) -> f64 {
-    std::env::var(format!("CT_{name}"))
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(default)
-}

@@ -112,16 +112,12 @@ pub(super) fn match_gap_bridges(
     // gap, rim to rim, plus the pen width thinning took off the two ends.
     let reach = LOOP_GAP_MAX_IN_TYPICAL_GAPS * TYPICAL_GAP_MAX_IN_SPACINGS * spacing
         + stroke_width
-        + 2.0 * vertices.dot_radius.values().fold(0.0, |a: f64, &b| a.max(b));
-    let candidates = bridge_candidates(vertices, ends, reach);
-    if std::env::var_os("BRDBG").is_some() {
-        for e in ends {
-            eprintln!("end v{} s{} at ({:.1},{:.1}) att={} out={:?} pts {:?}", e.vertex, e.stroke, e.at.x, e.at.y, e.attached, e.outward.map(|o| ((o.x * 100.0).round() / 100.0, (o.y * 100.0).round() / 100.0)), vertices.of_stroke[e.stroke].iter().map(|&v| (vertices.positions[v as usize].x.round(), vertices.positions[v as usize].y.round())).collect::<Vec<_>>());
-        }
-        for c in &candidates {
-            eprintln!("cand v{}-v{} cost {:.1} len {:.1} corner {:?}", c.a, c.b, c.cost, c.length, c.corner.is_some());
-        }
-    }
+        + 2.0
+            * vertices
+                .dot_radius
+                .values()
+                .fold(0.0, |a: f64, &b| a.max(b));
+    let candidates = bridge_candidates(vertices, ends, reach, stroke_width);
     let matching = Matching::new(vertices, ends, &candidates, stroke_width);
     // First pass: the drawing's typical gap. Second pass: the matching itself, with overlong
     // bridges out of the running, so that they cannot take an end from a real gap.
@@ -205,10 +201,38 @@ impl<'a> Matching<'a> {
         let mut groups = StrokeGroups::new(self.vertices);
         let mut matched: Vec<&Candidate> = Vec::new();
         let mut remaining = self.slots.clone();
-        for candidate in self.candidates {
+        let mut taken = vec![false; self.candidates.len()];
+        // Whether a bridge closes a loop depends on the bridges taken before it, and the gap that
+        // closes an outline is often its widest, so it comes last in cost order: rejected
+        // candidates get another look once the cheaper bridges have joined their strokes.
+        loop {
+            let matched_before = matched.len();
+            self.match_pass(
+                typical_gap,
+                &mut groups,
+                &mut remaining,
+                &mut taken,
+                &mut matched,
+            );
+            if matched.len() == matched_before || typical_gap.is_none() {
+                return matched;
+            }
+        }
+    }
+
+    /// One greedy pass over the candidates not taken yet, cheapest first.
+    fn match_pass(
+        &self,
+        typical_gap: Option<f64>,
+        groups: &mut StrokeGroups,
+        remaining: &mut HashMap<u32, u8>,
+        taken: &mut [bool],
+        matched: &mut Vec<&'a Candidate>,
+    ) {
+        for (index, candidate) in self.candidates.iter().enumerate() {
             let (length, a, b) = (candidate.length, candidate.a, candidate.b);
             // Each pair is a candidate once: `dedup` removed the copy a two-slot dot makes.
-            if remaining[&a] == 0 || remaining[&b] == 0 {
+            if taken[index] || remaining[&a] == 0 || remaining[&b] == 0 {
                 continue;
             }
             let (stroke_a, stroke_b) = (self.stroke_of[&a], self.stroke_of[&b]);
@@ -226,7 +250,7 @@ impl<'a> Matching<'a> {
                 let within_limit = gap <= BRIDGE_MAX_IN_TYPICAL_GAPS * typical
                     || (closes_loop
                         && gap <= LOOP_GAP_MAX_IN_TYPICAL_GAPS * typical
-                        && self.closes_clearly(candidate, loop_length, &remaining));
+                        && self.closes_clearly(candidate, loop_length, remaining));
                 if !within_limit {
                     continue;
                 }
@@ -234,9 +258,9 @@ impl<'a> Matching<'a> {
             groups.join(stroke_a, stroke_b, length);
             *remaining.get_mut(&a).expect("free end") -= 1;
             *remaining.get_mut(&b).expect("free end") -= 1;
+            taken[index] = true;
             matched.push(candidate);
         }
-        matched
     }
 
     /// DECISION: the gap where the pen comes back to where it started is often the widest of an
@@ -274,6 +298,7 @@ fn bridge_candidates(
     vertices: &StrokeVertices,
     ends: &[BridgeableEnd],
     reach: f64,
+    stroke_width: f64,
 ) -> Vec<Candidate> {
     let mut candidates: Vec<Candidate> = Vec::new();
     for (a, b) in ends_within(ends, reach) {
@@ -283,15 +308,13 @@ fn bridge_candidates(
             if vertices.of_stroke[a.stroke].len() < MIN_SELF_BRIDGED_SAMPLES {
                 continue;
             }
-            // DECISION: never bridge the two ends of one stroke that point the same way (a
-            // U-stroke's two ends, a finger tip): that seals the stroke on itself; a stroke that
-            // is a loop with a gap has ends that point at each other.
-            if let (Some(ua), Some(ub)) = (a.outward, b.outward) {
-                if ua.dot(ub) > 0.0 {
-                    continue;
-                }
-            }
         }
+        // DECISION: the two ends of one stroke that point the same way (a U-stroke's two ends, a
+        // finger tip) are never bridged straight across: that seals the stroke on itself. They may
+        // meet only at a corner ahead of both, as the two sides of a sharp tip do; side by side
+        // ends of a U are near parallel, so their rays meet too far ahead to be a bridge.
+        let same_way = a.stroke == b.stroke
+            && matches!((a.outward, b.outward), (Some(ua), Some(ub)) if ua.dot(ub) > 0.0);
         // Gaps are measured between rims: a dot has the size of the dash it stands for.
         let rims = vertices.dot_radius.get(&a.vertex).unwrap_or(&0.0)
             + vertices.dot_radius.get(&b.vertex).unwrap_or(&0.0);
@@ -305,7 +328,9 @@ fn bridge_candidates(
                 outward: b.outward,
             },
             rims,
-        );
+            stroke_width,
+        )
+        .filter(|shape| !same_way || shape.corner.is_some());
         if let Some(shape) = shape {
             candidates.push(Candidate {
                 cost: shape.cost,
@@ -381,7 +406,7 @@ struct BridgeShape {
 ///
 /// Ends whose lines do not meet ahead and that would turn sharply (two parallel lines ending side
 /// by side, the two ends of a U) are not a continuation: no bridge.
-fn bridge_shape(a: BridgeEnd, b: BridgeEnd, rims: f64) -> Option<BridgeShape> {
+fn bridge_shape(a: BridgeEnd, b: BridgeEnd, rims: f64, stroke_width: f64) -> Option<BridgeShape> {
     let chord = b.at - a.at;
     let distance = chord.hypot();
     let unit = if distance > 0.0 {
@@ -402,10 +427,28 @@ fn bridge_shape(a: BridgeEnd, b: BridgeEnd, rims: f64) -> Option<BridgeShape> {
             corner: None,
         }
     });
-    let corner = if turn_a.max(turn_b) > MIN_CORNER_TURN_DEGREES.to_radians() {
-        a.outward
+    let corner_limit = MIN_CORNER_TURN_DEGREES.to_radians();
+    let corner = if turn_a.max(turn_b) > corner_limit {
+        let meeting = a
+            .outward
             .zip(b.outward)
-            .and_then(|(ua, ub)| rays_meet(a.at, ua, b.at, ub))
+            .and_then(|(ua, ub)| rays_meet(a.at, ua, b.at, ub));
+        // DECISION: an end whose line runs into the ink of the other end (the centre line within
+        // a pen width of that end: half for its ink, half for the line's own) reaches the corner
+        // there, whichever way that other end's stroke points: the stroke that reached the corner
+        // first ends on it, and its direction, measured where the tip curls, is the less sure.
+        let end_on = |from: &BridgeEnd, to: &BridgeEnd, turn_to: f64| {
+            let along = from.outward?;
+            let offset = to.at - from.at;
+            (turn_to > corner_limit
+                && offset.dot(along) > 0.0
+                && offset.cross(along).abs() <= stroke_width)
+                .then_some((to.at, distance))
+        };
+        [meeting, end_on(&a, &b, turn_b), end_on(&b, &a, turn_a)]
+            .into_iter()
+            .flatten()
+            .min_by(|x, y| x.1.total_cmp(&y.1))
             .map(|(corner, length)| BridgeShape {
                 cost: length,
                 length,

@@ -315,7 +315,8 @@ impl StrokeGraph {
 pub fn connect_strokes(strokes: &[Stroke], spacing: f64, stroke_width: f64) -> Vec<Polyline> {
     let vertices = StrokeVertices::new(strokes, spacing);
     let positions = &vertices.positions;
-    let StrokeGraph { mut edges, ends } = StrokeGraph::new(strokes, &vertices, spacing, stroke_width);
+    let StrokeGraph { mut edges, ends } =
+        StrokeGraph::new(strokes, &vertices, spacing, stroke_width);
     let bridges = match_gap_bridges(&vertices, &ends, spacing, stroke_width);
     let bridged: HashSet<u32> = bridges.iter().flat_map(|b| [b.a, b.b]).collect();
     // T-ends that took no bridge end on the stroke they ran into.
@@ -580,6 +581,61 @@ mod tests {
         assert_eq!(curves.len(), 2, "{curves:?}");
         let stem = curves.iter().find(|c| c.points.len() == 12).expect("stem");
         assert!(stem.points.contains(&Point::new(10.0, 14.0)), "{stem:?}");
+    }
+
+    /// Dashes `dash` long with gaps `gap` between them, sampled every 4 px, along the polyline
+    /// through `corners`.
+    fn dashes(corners: &[(f64, f64)], dash: f64, gap: f64) -> Vec<Stroke> {
+        let corners: Vec<Point> = corners.iter().map(|&(x, y)| Point::new(x, y)).collect();
+        let line = Polyline::new(corners, false);
+        let total = line.length();
+        let at = |distance: f64| {
+            let mut left = distance;
+            for pair in line.points.windows(2) {
+                let length = pair[0].distance(pair[1]);
+                if left <= length {
+                    return pair[0] + (pair[1] - pair[0]) * (left / length);
+                }
+                left -= length;
+            }
+            line.points[line.points.len() - 1]
+        };
+        let mut strokes = Vec::new();
+        let mut start = 0.0;
+        while start < total {
+            let end = (start + dash).min(total);
+            let count = ((end - start) / 4.0).ceil() as usize;
+            let points: Vec<(f64, f64)> = (0..=count)
+                .map(|k| at(start + (end - start) * k as f64 / count as f64))
+                .map(|p| (p.x, p.y))
+                .collect();
+            strokes.push(open(&points));
+            start = end + gap;
+        }
+        strokes
+    }
+
+    #[test]
+    fn a_sharp_tip_closes_where_one_side_runs_into_the_other_sides_end() {
+        // A 10° tip whose gap is just below it on the right side: the left side reaches the tip
+        // with its end direction 4° off (as where a thinned tip curls), the right side's line runs
+        // straight into the tip. Their rays meet 14 px above the tip, too far for a bridge; the
+        // tip itself is where the right side ends.
+        let tip = (160.0, 134.0);
+        let left_foot = (160.0 - 0.065 * 160.0, 134.0 + 0.998 * 160.0);
+        let right_end = (164.4, 149.6);
+        let right_foot = (164.4 + 0.174 * 146.3, left_foot.1);
+        let strokes = dashes(&[tip, left_foot, right_foot, right_end], 40.0, 6.0);
+        assert!(strokes.len() > 6, "{}", strokes.len());
+        let curves = connect(&strokes, Method::Strokes, 4.0, 3.0);
+        assert_eq!(curves.len(), 1, "{curves:?}");
+        assert!(curves[0].closed, "{curves:?}");
+        let highest = curves[0]
+            .points
+            .iter()
+            .map(|p| p.y)
+            .fold(f64::MAX, f64::min);
+        assert!((highest - tip.1).abs() < 3.0, "the tip is at {highest}");
     }
 
     #[test]
