@@ -12,14 +12,14 @@
 //! [`geometry`] holds what several stages share.
 
 pub use crate::output::{debug, dxf, fit, flatten, render, svg, units};
-pub use crate::raster::{binarize, bitmap, clean, decode, density, thin};
+pub use crate::raster::{binarize, bitmap, clean, decode, density, radius, thin};
 
 pub mod strokes {
     //! Skeleton → pen strokes → samples: the skeleton traced as a graph, pruned, its junctions
     //! paired by good continuation, and every stroke sampled for the crawl.
     pub use crate::strokes::{
-        default_spacing, extract_strokes, sample_strokes, simplification_tolerance, Stroke,
-        StrokeEnd,
+        default_spacing, extract_strokes, sample_strokes, simplification_tolerance, split_dots,
+        Dot, Stroke, StrokeEnd,
     };
 }
 

@@ -8,10 +8,10 @@ use std::time::{Duration, Instant};
 
 use image::{DynamicImage, GrayImage};
 
-use crate::crawl::strokes::{connect, end_extension, minimum_curve_length, Method};
+use crate::crawl::strokes::{connect, Method};
 use crate::files::describe_io;
 use crate::output::debug::Stages;
-use crate::output::fit::{default_tolerance, fit_paths, FitOptions};
+use crate::output::fit::{default_tolerance, fit_paths, sort_paths, CurvePath, FitOptions};
 use crate::output::svg::Drawing;
 use crate::raster::binarize::{binarize, BinarizeOptions, MethodUsed};
 use crate::raster::bitmap::Bitmap;
@@ -19,7 +19,9 @@ use crate::raster::clean::{clean, estimate_stroke_width, CleanReport};
 use crate::raster::decode::{decode_image, to_gray, DecodeError};
 use crate::raster::density::image_dpi;
 use crate::raster::thin::thin;
-use crate::strokes::{default_spacing, extract_strokes, sample_strokes, simplification_tolerance};
+use crate::strokes::{
+    default_spacing, extract_strokes, sample_strokes, simplification_tolerance, split_dots,
+};
 
 /// What to do differently from the defaults. `TraceOptions::default()` needs no tuning.
 #[derive(Clone, Debug, PartialEq)]
@@ -136,7 +138,11 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
     let raster = raster_stages(image, options, &mut report, &mut watch)?;
     let stroke_width = raster.stroke_width;
 
-    let strokes = extract_strokes(&raster.skeleton, stroke_width);
+    let (strokes, dots) = split_dots(
+        extract_strokes(&raster.skeleton, stroke_width),
+        &raster.mask,
+        stroke_width,
+    );
     report.strokes = strokes.len();
     let spacing = options
         .spacing
@@ -147,13 +153,7 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
     report.samples = sampled.iter().map(|s| s.line.points.len()).sum();
     watch.lap(&mut report, "strokes+sample");
 
-    let curves = connect(
-        &sampled,
-        options.method,
-        spacing,
-        minimum_curve_length(stroke_width),
-        end_extension(stroke_width),
-    );
+    let curves = connect(&sampled, options.method, spacing, stroke_width);
     watch.lap(&mut report, "reconstruct");
 
     let fit_options = FitOptions {
@@ -164,7 +164,12 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
             .unwrap_or_else(|| default_tolerance(stroke_width)),
     };
     report.tolerance = fit_options.tolerance;
-    let paths = fit_paths(&curves, &fit_options);
+    let mut paths = fit_paths(&curves, &fit_options);
+    paths.extend(
+        dots.iter()
+            .map(|dot| CurvePath::dot(dot.centre, dot.diameter)),
+    );
+    sort_paths(&mut paths);
     watch.lap(&mut report, "fit");
 
     let drawing = Drawing {

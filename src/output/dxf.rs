@@ -76,9 +76,12 @@ pub fn to_dxf(drawing: &Drawing, size: &PhysicalSize, tolerance: f64) -> String 
             .into_iter()
             .map(to_dxf_point)
             .collect();
+        // A traced dot is a zero-length path (its size is its stroke width): CAD wants a POINT.
         match vertices.as_slice() {
             [] => {}
-            [single] => writer.point(*single, owners.model_space),
+            [first, rest @ ..] if rest.iter().all(|p| p == first) => {
+                writer.point(*first, owners.model_space)
+            }
             _ => writer.lwpolyline(&vertices, path.closed, owners.model_space),
         }
     }
@@ -431,6 +434,7 @@ mod tests {
                 ),
                 CurvePath::polyline(&[Point::new(30.0, 30.0), Point::new(60.0, 90.0)], false),
                 CurvePath::polyline(&[Point::new(5.0, 5.0)], false),
+                CurvePath::dot(Point::new(20.0, 20.0), 6.0),
             ],
             stroke_width: 3.0,
             color: "black".into(),
@@ -464,7 +468,10 @@ mod tests {
             .filter(|(code, _)| *code == 0)
             .map(|(_, value)| *value)
             .collect();
-        assert_eq!(kinds, ["LWPOLYLINE", "LWPOLYLINE", "POINT", "POINT"]);
+        assert_eq!(
+            kinds,
+            ["LWPOLYLINE", "LWPOLYLINE", "POINT", "POINT", "POINT"]
+        );
         let flags: Vec<&str> = pairs
             .windows(3)
             .filter(|w| w[0] == (100, "AcDbPolyline"))

@@ -71,7 +71,11 @@ mod tests {
         path.curve_to((-100.0, -k), (-k, -100.0), (0.0, -100.0));
         path.curve_to((k, -100.0), (100.0, -k), (100.0, 0.0));
         path.close_path();
-        CurvePath { path, closed: true }
+        CurvePath {
+            path,
+            closed: true,
+            stroke_width: None,
+        }
     }
 
     #[test]

@@ -190,7 +190,19 @@ fn write_svg(drawing: &Drawing, width: &str, height: &str) -> String {
         format_number(drawing.stroke_width.max(MIN_SIZE)),
     );
     for curve in &drawing.paths {
-        let _ = writeln!(svg, r#"<path d="{}"/>"#, path_data(&curve.path));
+        match curve.stroke_width {
+            Some(width) => {
+                let _ = writeln!(
+                    svg,
+                    r#"<path stroke-width="{}" d="{}"/>"#,
+                    format_number(width.max(MIN_SIZE)),
+                    path_data(&curve.path)
+                );
+            }
+            None => {
+                let _ = writeln!(svg, r#"<path d="{}"/>"#, path_data(&curve.path));
+            }
+        }
     }
     svg.push_str("</g>\n");
     write_dots(

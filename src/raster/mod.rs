@@ -8,4 +8,5 @@ pub mod bitmap;
 pub mod clean;
 pub mod decode;
 pub mod density;
+pub mod radius;
 pub mod thin;
