@@ -131,6 +131,10 @@ pub(super) fn match_gap_bridges(
         return Vec::new();
     }
     gaps.sort_by(f64::total_cmp);
+    // The first matching bridges openings too (a "( )", a mouth); gaps longer than an ordinary
+    // bridge may be, against the plain median, are not part of the hand's typical gap.
+    let median = gaps[gaps.len() / 2];
+    gaps.retain(|&gap| gap <= BRIDGE_MAX_IN_TYPICAL_GAPS * median);
     let typical_gap = gaps[gaps.len() / 2].clamp(
         TYPICAL_GAP_MIN_IN_SPACINGS * spacing,
         TYPICAL_GAP_MAX_IN_SPACINGS * spacing,
