@@ -9,6 +9,7 @@ use std::time::{Duration, Instant};
 use image::{DynamicImage, GrayImage};
 
 use crate::crawl::strokes::{connect, Method};
+use crate::crawl::tips::restore_tips;
 use crate::files::describe_io;
 use crate::output::debug::Stages;
 use crate::output::fit::{default_tolerance, fit_paths, sort_paths, CurvePath, FitOptions};
@@ -153,7 +154,10 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
     report.samples = sampled.iter().map(|s| s.line.points.len()).sum();
     watch.lap(&mut report, "strokes+sample");
 
-    let curves = connect(&sampled, options.method, spacing, stroke_width);
+    let mut curves = connect(&sampled, options.method, spacing, stroke_width);
+    if options.method == Method::Strokes {
+        restore_tips(&mut curves, &raster.mask, stroke_width);
+    }
     watch.lap(&mut report, "reconstruct");
 
     let fit_options = FitOptions {

@@ -11,6 +11,7 @@ mod bridges;
 pub mod neighbours;
 pub mod reconstruct;
 pub mod strokes;
+pub mod tips;
 mod triangulation;
 
 /// Why a point set could not be reconstructed.
