@@ -24,6 +24,7 @@ pub mod pointfile;
 pub mod pointset;
 pub mod reconstruct;
 pub mod render;
+pub mod robust_crawl;
 pub mod sample;
 pub mod sketch;
 pub mod strokes;
