@@ -38,6 +38,19 @@ pub struct PointsArgs {
     /// In SVG output, draw every input point as a dot over the curves.
     #[arg(long)]
     pub show_points: bool,
+    /// How points are connected: `robust` (default) handles stray points, sharp corners, open
+    /// ends and thin parts; `paper` is the paper's crawl as published.
+    #[arg(long, value_enum, default_value_t = PointsMethod::Robust)]
+    pub method: PointsMethod,
+}
+
+/// `--method` values of `crawltrace points`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum PointsMethod {
+    /// The robust crawl (`docs/point-sets.md`).
+    Robust,
+    /// The paper's crawl (Parakkat & Muthuganapathy 2016, Algorithm 1).
+    Paper,
 }
 
 /// Output formats of `crawltrace points`.
@@ -92,7 +105,7 @@ pub struct TraceArgs {
     #[arg(long, value_name = "PX", help_heading = "Reconstruction")]
     pub spacing: Option<f64>,
     /// How samples are connected: `strokes` (default) knows which samples the pen drew together;
-    /// `points` is the paper's plain crawl on all samples.
+    /// `points` is the robust point-set crawl on all samples; `paper` the paper's plain crawl.
     #[arg(long, value_enum, default_value_t = MethodArg::Strokes, help_heading = "Reconstruction")]
     pub method: MethodArg,
 
@@ -146,6 +159,8 @@ pub struct TraceArgs {
 pub enum MethodArg {
     /// Crawl on stroke edges and gap bridges (default).
     Strokes,
-    /// The paper's crawl on the Delaunay triangulation of all samples.
+    /// The robust point-set crawl on the Delaunay triangulation of all samples.
     Points,
+    /// The paper's crawl on the Delaunay triangulation of all samples.
+    Paper,
 }

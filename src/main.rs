@@ -12,7 +12,7 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use clap::Parser;
-use cli::{Cli, Command, MethodArg, PointsArgs, PointsFormat, RenderArgs, TraceArgs};
+use cli::{Cli, Command, MethodArg, PointsArgs, PointsFormat, PointsMethod, RenderArgs, TraceArgs};
 use crawltrace::batch::{self, describe_io, write_atomically, BatchOptions};
 use crawltrace::binarize::{BinarizeOptions, ThresholdMethod};
 use crawltrace::sketch::Method;
@@ -73,6 +73,7 @@ fn trace_options(args: &TraceArgs) -> TraceOptions {
         method: match args.method {
             MethodArg::Strokes => Method::Strokes,
             MethodArg::Points => Method::Points,
+            MethodArg::Paper => Method::Paper,
         },
         keep_stages: args.debug.is_some(),
     }
@@ -239,7 +240,11 @@ fn run_points(args: PointsArgs) -> Result<ExitCode, Failure> {
     };
     let file = pointfile::parse_points(&bytes).map_err(|e| Failure::new(&input_name, e))?;
     drop(bytes); // The text of a large file is no longer needed: keep the peak memory down.
-    let reconstruction = reconstruct(&file.points).map_err(|e| {
+    let reconstruction = match args.method {
+        PointsMethod::Robust => crawltrace::robust_crawl::reconstruct(&file.points),
+        PointsMethod::Paper => reconstruct(&file.points),
+    };
+    let reconstruction = reconstruction.map_err(|e| {
         let line = match e {
             reconstruct::ReconstructError::NotFinite { index }
             | reconstruct::ReconstructError::OutOfRange { index, .. } => file.lines[index],

@@ -8,7 +8,8 @@
 //! does: within a stroke only the stroke's own edges are offered, and only the pen's lift-off
 //! points (free stroke ends) may be bridged, to each other, along Delaunay edges. The crawl then
 //! decides, with the paper's seeds, candidates, `d > d1` stop and a closing rule, how the strokes
-//! chain into shapes. [`Method::Points`] keeps the paper's plain crawl for comparison.
+//! chain into shapes. [`Method::Points`] crawls all samples as one point set with the robust crawl,
+//! and [`Method::Paper`] with the paper's plain crawl, for comparison.
 
 use std::collections::HashMap;
 
@@ -44,9 +45,12 @@ pub enum Method {
     /// The crawl on stroke edges and gap bridges (the default; see the module documentation).
     #[default]
     Strokes,
+    /// The robust point-set crawl ([`crate::robust_crawl`]) on the Delaunay triangulation of all
+    /// samples, ignoring which stroke they came from.
+    Points,
     /// The paper's crawl on the Delaunay triangulation of all samples, ignoring which stroke
     /// they came from.
-    Points,
+    Paper,
 }
 
 /// Connects sampled strokes into curves with `method`. `spacing` is the sample spacing; curves
@@ -61,7 +65,8 @@ pub fn connect(
 ) -> Vec<TracedCurve> {
     let curves = match method {
         Method::Strokes => connect_strokes(strokes, spacing),
-        Method::Points => crawl_all_samples(strokes),
+        Method::Points => crawl_all_samples(strokes, crate::robust_crawl::reconstruct),
+        Method::Paper => crawl_all_samples(strokes, reconstruct::reconstruct),
     };
     let attached: Vec<Point> = strokes
         .iter()
@@ -99,13 +104,19 @@ fn extend_end(points: &mut [Point], at_last: bool, extension: f64, attached: &[P
     }
 }
 
-/// The paper's approach: one point set, one crawl.
-fn crawl_all_samples(strokes: &[SampledStroke]) -> Vec<TracedCurve> {
+/// The paper's approach: one point set, one crawl (`reconstruct_points`).
+fn crawl_all_samples(
+    strokes: &[SampledStroke],
+    reconstruct_points: fn(
+        &[Point],
+    )
+        -> Result<reconstruct::Reconstruction, reconstruct::ReconstructError>,
+) -> Vec<TracedCurve> {
     let points: Vec<Point> = strokes
         .iter()
         .flat_map(|s| s.points.iter().copied())
         .collect();
-    let Ok(result) = reconstruct::reconstruct(&points) else {
+    let Ok(result) = reconstruct_points(&points) else {
         return Vec::new(); // pixel coordinates are always finite and in range
     };
     result
@@ -569,9 +580,11 @@ mod tests {
     }
 
     #[test]
-    fn the_paper_method_also_runs() {
+    fn the_point_set_methods_also_run() {
         let strokes = skip_stroke_circle((100.0, 100.0), 60.0, 40.0, 3.0);
-        let curves = connect(&strokes, Method::Points, 4.0, 6.0, 0.0);
-        assert!(!curves.is_empty());
+        for method in [Method::Points, Method::Paper] {
+            let curves = connect(&strokes, method, 4.0, 6.0, 0.0);
+            assert!(!curves.is_empty(), "{method:?}");
+        }
     }
 }
