@@ -7,8 +7,8 @@ use std::collections::VecDeque;
 use super::measure::{continuation_score, Local, NONE};
 use super::seeds::{self, Seed};
 use super::{
-    BESIDE, CANDIDATE_LIMIT, CLOSING_GAP_OF_LENGTH, MIN_CURVE_POINTS, ONWARD_TURN_COS,
-    SHARP_TURN_COS, SPARSE_RATIO, STEP_LIMIT,
+    BESIDE, CANDIDATE_LIMIT, CLOSING_GAP_OF_LENGTH, EVIDENT_CURVE_POINTS, MIN_CURVE_POINTS,
+    ONWARD_TURN_COS, SHARP_TURN_COS, SPARSE_RATIO, STEP_LIMIT,
 };
 use crate::reconstruct::Chain;
 
@@ -173,7 +173,6 @@ impl<'a> Crawler<'a> {
         if points
             .iter()
             .any(|&v| !self.is_free(v) || self.stray[v as usize])
-            || self.sparse_beside_curves(&points, seed.spacing, FREE)
         {
             return;
         }
@@ -186,8 +185,8 @@ impl<'a> Crawler<'a> {
         let vertices: Vec<u32> = chain.vertices.iter().copied().collect();
         let is_curve = vertices.len() >= MIN_CURVE_POINTS;
         let strays = is_curve
-            && self.sparse_beside_curves(&vertices, self.median_edge(&vertices, closed), id)
-            && !self.regular(&vertices, closed);
+            && !(vertices.len() >= EVIDENT_CURVE_POINTS && self.regular(&vertices, closed))
+            && self.sparse_beside_curves(&vertices, self.median_edge(&vertices, closed), id);
         if !is_curve || strays {
             for &v in &vertices {
                 self.set_owner(v, FREE);

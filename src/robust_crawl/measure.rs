@@ -17,8 +17,8 @@ pub struct Sample {
     pub second_nearest_squared: f64,
     /// Its two nearest Delaunay neighbours (`NONE` if missing).
     pub nearest: [u32; 2],
-    /// If those two lie on opposite sides of it (more than 120° apart, so that they are its
-    /// neighbours along a strand), the squared distance to the farther; otherwise −1.
+    /// If those two lie on opposite sides of it, as a point's neighbours along a smoothly sampled
+    /// curve do (more than 150° apart), the squared distance to the farther; otherwise −1.
     pub strand_reach: f64,
 }
 
@@ -124,7 +124,8 @@ fn measure(positions: &[Point], graph: &NeighbourGraph, v: u32) -> Sample {
                 positions[*a as usize] - position,
                 positions[*b as usize] - position,
             );
-            // cos(u, w) ≤ −1/2 without a square root: u·w ≤ 0 and (u·w)² ≥ |u|²|w|² / 4.
+            // cos(u, w) ≤ OPPOSITE_COS < 0 without a square root: u·w ≤ 0 and
+            // (u·w)² ≥ OPPOSITE_COS² |u|²|w|².
             let dot = u.dot(w);
             let opposite =
                 dot <= 0.0 && dot * dot >= OPPOSITE_COS * OPPOSITE_COS * u.dot(u) * w.dot(w);
@@ -141,8 +142,10 @@ fn measure(positions: &[Point], graph: &NeighbourGraph, v: u32) -> Sample {
     }
 }
 
-/// Two directions from a point are on opposite sides of it when they are more than 120° apart.
-const OPPOSITE_COS: f64 = -0.5;
+/// Two directions from a point are on opposite sides of it, along a strand, when they are more
+/// than 150° apart: a curve sampled densely enough for its turns (ε < 1/2) turns by at most
+/// 2 asin(ε/2) ≈ 29° at a sample. A point across a thin part, diagonally behind, is not.
+const OPPOSITE_COS: f64 = -0.866;
 
 /// A step's length weighed by its turn: good continuation.
 pub fn continuation_score(length: f64, turn_cos: f64) -> f64 {
