@@ -92,9 +92,13 @@ pub const FAMILIES: &[Family] = &[
 /// Jitter along the curve, in spacings, for the families sampled at spacing 1.
 const JITTER: f64 = 0.15;
 
-fn outliers(random: &mut Random, k: usize) -> Instance {
-    let percent = [5, 10, 20][k % 3];
-    let radius = 95.0 / TAU;
+/// The radius of a circle of 95 samples at spacing 1.
+const STRAY_CIRCLE_RADIUS: f64 = 95.0 / TAU;
+
+/// A circle of 95 samples with `percent` % as many uniform strays, at least 4 spacings off it,
+/// in its bounding box grown by 10.
+pub fn circle_with_strays(random: &mut Random, percent: usize) -> Scene {
+    let radius = STRAY_CIRCLE_RADIUS;
     let samples = circle((0.0, 0.0), radius).jittered_samples(random, 1.0, JITTER);
     let count = (95.0 * percent as f64 / 100.0).round() as usize;
     let reach = radius + 10.0;
@@ -105,68 +109,76 @@ fn outliers(random: &mut Random, k: usize) -> Instance {
             strays.push(p);
         }
     }
-    let scene = Scene {
-        strays,
-        ..Scene::default()
+    Scene::default().curve(samples, true).strays(strays)
+}
+
+/// A point at `distance` from the centre of the strays' circle, in a random direction.
+fn around_circle(random: &mut Random, distance: f64) -> Xy {
+    let direction = random.range(0.0, TAU);
+    (distance * direction.cos(), distance * direction.sin())
+}
+
+/// The circle of [`circle_with_strays`] and two strays 0.6 apart, 5 spacings outside it.
+pub fn stray_pair_outside_circle(random: &mut Random) -> Scene {
+    let samples = circle((0.0, 0.0), STRAY_CIRCLE_RADIUS).jittered_samples(random, 1.0, JITTER);
+    let middle = around_circle(random, STRAY_CIRCLE_RADIUS + 5.0);
+    let turn = random.range(0.0, TAU);
+    let half = (0.3 * turn.cos(), 0.3 * turn.sin());
+    let strays = vec![
+        (middle.0 + half.0, middle.1 + half.1),
+        (middle.0 - half.0, middle.1 - half.1),
+    ];
+    Scene::default().curve(samples, true).strays(strays)
+}
+
+/// The circle and three strays in a row, 3 apart, 20 spacings outside it.
+pub fn stray_row_far_from_circle(random: &mut Random) -> Scene {
+    let samples = circle((0.0, 0.0), STRAY_CIRCLE_RADIUS).jittered_samples(random, 1.0, JITTER);
+    let middle = around_circle(random, STRAY_CIRCLE_RADIUS + 20.0);
+    let turn = random.range(0.0, TAU);
+    let strays = (-1..=1)
+        .map(|i| {
+            let along = 3.0 * i as f64;
+            (middle.0 + along * turn.cos(), middle.1 + along * turn.sin())
+        })
+        .collect();
+    Scene::default().curve(samples, true).strays(strays)
+}
+
+/// An open line of 30 spacings with a stray 6 to 7 spacings beyond each end (within 45° of the
+/// line's direction).
+pub fn line_with_strays_beyond(random: &mut Random) -> Scene {
+    let line = polygon(&[(0.0, 0.0), (30.0, 0.0)], false);
+    let samples = line.jittered_samples(random, 1.0, JITTER);
+    let mut strays = Vec::new();
+    for (end, outward) in [((0.0, 0.0), PI), ((30.0, 0.0), 0.0)] {
+        let reach = random.range(6.0, 7.0);
+        let angle = outward + random.range(-PI / 4.0, PI / 4.0);
+        strays.push((end.0 + reach * angle.cos(), end.1 + reach * angle.sin()));
     }
-    .curve(samples, true);
+    Scene::default().curve(samples, false).strays(strays)
+}
+
+fn outliers(random: &mut Random, k: usize) -> Instance {
+    let percent = [5, 10, 20][k % 3];
+    let scene = circle_with_strays(random, percent);
     Instance::new("outliers", format!("{percent}% strays"), scene, random)
 }
 
 fn stray_cases(random: &mut Random, k: usize) -> Instance {
-    let radius = 95.0 / TAU;
-    let direction = random.range(0.0, TAU);
-    let unit = (direction.cos(), direction.sin());
     let (label, scene) = match k % 3 {
-        0 => {
-            let samples = circle((0.0, 0.0), radius).jittered_samples(random, 1.0, JITTER);
-            let middle = (unit.0 * (radius + 5.0), unit.1 * (radius + 5.0));
-            let turn = random.range(0.0, TAU);
-            let half = (0.3 * turn.cos(), 0.3 * turn.sin());
-            let strays = vec![
-                (middle.0 + half.0, middle.1 + half.1),
-                (middle.0 - half.0, middle.1 - half.1),
-            ];
-            let scene = Scene {
-                strays,
-                ..Scene::default()
-            }
-            .curve(samples, true);
-            ("two strays 0.6 apart, 5 outside a circle", scene)
-        }
-        1 => {
-            let samples = circle((0.0, 0.0), radius).jittered_samples(random, 1.0, JITTER);
-            let middle = (unit.0 * (radius + 20.0), unit.1 * (radius + 20.0));
-            let turn = random.range(0.0, TAU);
-            let strays = (-1..=1)
-                .map(|i| {
-                    let along = 3.0 * i as f64;
-                    (middle.0 + along * turn.cos(), middle.1 + along * turn.sin())
-                })
-                .collect();
-            let scene = Scene {
-                strays,
-                ..Scene::default()
-            }
-            .curve(samples, true);
-            ("three strays in a row 3 apart, 20 outside a circle", scene)
-        }
-        _ => {
-            let line = polygon(&[(0.0, 0.0), (30.0, 0.0)], false);
-            let samples = line.jittered_samples(random, 1.0, JITTER);
-            let mut strays = Vec::new();
-            for (end, outward) in [((0.0, 0.0), PI), ((30.0, 0.0), 0.0)] {
-                let reach = random.range(6.0, 7.0);
-                let angle = outward + random.range(-PI / 4.0, PI / 4.0);
-                strays.push((end.0 + reach * angle.cos(), end.1 + reach * angle.sin()));
-            }
-            let scene = Scene {
-                strays,
-                ..Scene::default()
-            }
-            .curve(samples, false);
-            ("an open line with strays 6-7 beyond its ends", scene)
-        }
+        0 => (
+            "two strays 0.6 apart, 5 outside a circle",
+            stray_pair_outside_circle(random),
+        ),
+        1 => (
+            "three strays in a row 3 apart, 20 outside a circle",
+            stray_row_far_from_circle(random),
+        ),
+        _ => (
+            "an open line with strays 6-7 beyond its ends",
+            line_with_strays_beyond(random),
+        ),
     };
     Instance::new("stray-cases", label.to_string(), scene, random)
 }
@@ -190,12 +202,18 @@ fn sector(radius: f64, apex: f64) -> Path {
     Path::new(points, true)
 }
 
+/// A circular sector of radius 25 with an apex of `degrees`, sampled at spacing about 1 along
+/// its outline, the apex on a sample or halfway between two.
+pub fn sector_samples(degrees: f64, apex_on_sample: bool) -> Scene {
+    let path = sector(25.0, degrees.to_radians());
+    let count = path.length().round() as usize;
+    let samples = path.even_samples(count, if apex_on_sample { 0.0 } else { 0.5 });
+    Scene::default().curve(samples, true)
+}
+
 fn sectors(random: &mut Random, k: usize) -> Instance {
     let degrees = 15 + 5 * ((k / 2) % 14);
     let on_sample = k % 2 == 0;
-    let path = sector(25.0, (degrees as f64).to_radians());
-    let count = path.length().round() as usize;
-    let samples = path.even_samples(count, if on_sample { 0.0 } else { 0.5 });
     let label = format!(
         "apex {degrees}°, {}",
         if on_sample {
@@ -204,12 +222,8 @@ fn sectors(random: &mut Random, k: usize) -> Instance {
             "between samples"
         }
     );
-    Instance::new(
-        "sectors",
-        label,
-        Scene::default().curve(samples, true),
-        random,
-    )
+    let scene = sector_samples(degrees as f64, on_sample);
+    Instance::new("sectors", label, scene, random)
 }
 
 /// The interior angle at each corner of a closed polygon, in degrees (counter-clockwise order).
@@ -275,74 +289,85 @@ fn segment_distance(p: Xy, a: Xy, b: Xy) -> f64 {
     distance(p, (a.0 + t * dx, a.1 + t * dy))
 }
 
-fn open_ends(random: &mut Random, k: usize) -> Instance {
-    if k % 3 == 2 {
-        let first = polygon(&[(0.0, 0.0), (30.0, 0.0)], false);
-        let shift = random.range(-10.0, 10.0);
-        let second = polygon(&[(shift, 5.0), (shift + 30.0, 5.0)], false);
-        let scene = Scene::default()
-            .curve(first.jittered_samples(random, 1.0, JITTER), false)
-            .curve(second.jittered_samples(random, 0.97, JITTER), false);
-        return Instance::new(
-            "open-ends",
-            "two parallel lines 5 apart, one 3 % denser".into(),
-            scene,
-            random,
-        );
-    }
-    let density = if k % 3 == 0 { 1.02 } else { 0.98 };
-    let gap = random.range(3.0, 40.0);
+/// Two parallel open lines of 30 spacings, 5 apart, the second 3 % denser and shifted along
+/// by up to 10.
+pub fn parallel_lines(random: &mut Random) -> Scene {
+    let first = polygon(&[(0.0, 0.0), (30.0, 0.0)], false);
+    let shift = random.range(-10.0, 10.0);
+    let second = polygon(&[(shift, 5.0), (shift + 30.0, 5.0)], false);
+    Scene::default()
+        .curve(first.jittered_samples(random, 1.0, JITTER), false)
+        .curve(second.jittered_samples(random, 0.97, JITTER), false)
+}
+
+/// A circle of radius 12 and an open 120° arc of radius 20 sampled `density` times as densely,
+/// whose nearest end is `gap` from the circle, heading off at a random angle.
+pub fn circle_and_arc(random: &mut Random, gap: f64, density: f64) -> Scene {
     let circle_samples = circle((0.0, 0.0), 12.0).jittered_samples(random, 1.0, JITTER);
     loop {
-        // The arc's first end at `gap` from the circle, the arc heading off at a random angle;
-        // kept only when that end is the arc's nearest point to the circle.
+        // Kept only when the first end is the arc's nearest point to the circle.
         let out = random.range(0.0, TAU);
         let end = ((12.0 + gap) * out.cos(), (12.0 + gap) * out.sin());
         let start = random.range(0.0, TAU);
         let centre = (end.0 - 20.0 * start.cos(), end.1 - 20.0 * start.sin());
-        let span = if random.below(2) == 0 { 1.0 } else { -1.0 } * TAU / 3.0;
-        let path = if span > 0.0 {
-            arc(centre, 20.0, start, start + span)
+        let path = if random.below(2) == 0 {
+            arc(centre, 20.0, start, start + TAU / 3.0)
         } else {
-            arc(centre, 20.0, start + span, start)
+            arc(centre, 20.0, start - TAU / 3.0, start)
         };
         let clear = path
             .fine_points()
             .iter()
             .all(|p| p.0.hypot(p.1) - 12.0 >= gap - 1e-6);
-        if !clear {
-            continue;
+        if clear {
+            let arc_samples = path.jittered_samples(random, 1.0 / density, JITTER);
+            return Scene::default()
+                .curve(circle_samples, true)
+                .curve(arc_samples, false);
         }
-        let arc_samples = path.jittered_samples(random, 1.0 / density, JITTER);
-        let scene = Scene::default()
-            .curve(circle_samples, true)
-            .curve(arc_samples, false);
-        let label = format!(
-            "arc end {gap:.1} from the circle, arc {}",
-            if density > 1.0 {
-                "2 % denser"
-            } else {
-                "2 % sparser"
-            }
-        );
+    }
+}
+
+fn open_ends(random: &mut Random, k: usize) -> Instance {
+    if k % 3 == 2 {
+        let label = "two parallel lines 5 apart, one 3 % denser".to_string();
+        let scene = parallel_lines(random);
         return Instance::new("open-ends", label, scene, random);
     }
+    let density = if k % 3 == 0 { 1.02 } else { 0.98 };
+    let gap = random.range(3.0, 40.0);
+    let label = format!(
+        "arc end {gap:.1} from the circle, arc {}",
+        if density > 1.0 {
+            "2 % denser"
+        } else {
+            "2 % sparser"
+        }
+    );
+    let scene = circle_and_arc(random, gap, density);
+    Instance::new("open-ends", label, scene, random)
+}
+
+/// A closed 30 × `gap` slot (a thin rectangle), spacing 1.
+pub fn slot(random: &mut Random, gap: f64) -> Scene {
+    let slot = polygon(&[(0.0, 0.0), (30.0, 0.0), (30.0, gap), (0.0, gap)], true);
+    Scene::default().curve(slot.jittered_samples(random, 1.0, 0.1), true)
+}
+
+/// Two circles of radius 10, `gap` apart, spacing 1.
+pub fn two_circles(random: &mut Random, gap: f64) -> Scene {
+    let a = circle((0.0, 0.0), 10.0).jittered_samples(random, 1.0, 0.1);
+    let b = circle((20.0 + gap, 0.0), 10.0).jittered_samples(random, 1.0, 0.1);
+    Scene::default().curve(a, true).curve(b, true)
 }
 
 fn thin_scene(random: &mut Random, k: usize, gap: f64) -> (String, Scene) {
     if k % 2 == 0 {
-        let slot = polygon(&[(0.0, 0.0), (30.0, 0.0), (30.0, gap), (0.0, gap)], true);
-        let samples = slot.jittered_samples(random, 1.0, 0.1);
-        (
-            format!("30 × {gap:.2} slot"),
-            Scene::default().curve(samples, true),
-        )
+        (format!("30 × {gap:.2} slot"), slot(random, gap))
     } else {
-        let a = circle((0.0, 0.0), 10.0).jittered_samples(random, 1.0, 0.1);
-        let b = circle((20.0 + gap, 0.0), 10.0).jittered_samples(random, 1.0, 0.1);
         (
             format!("two circles {gap:.2} apart"),
-            Scene::default().curve(a, true).curve(b, true),
+            two_circles(random, gap),
         )
     }
 }
@@ -424,49 +449,56 @@ fn feature_size_samples(paths: &[Path], epsilon: f64, random: &mut Random) -> Ve
         .collect()
 }
 
-fn lfs_closed(random: &mut Random, k: usize) -> Instance {
-    let epsilon = EPSILONS[k % 3];
-    let count = 1 + random.below(3);
+/// `count` random smooth closed curves in a row, each 10-30 across, 1-15 apart (so that they
+/// shape each other's local feature size), sampled at `epsilon` × local feature size.
+pub fn feature_size_closed(random: &mut Random, epsilon: f64, count: usize) -> Scene {
     let mut paths = Vec::new();
-    for i in 0..count {
+    let mut cursor = 0.0;
+    for _ in 0..count {
         let scale = random.range(10.0, 30.0);
-        let centre = (
-            i as f64 * 100.0 + random.range(-5.0, 5.0),
-            random.range(-5.0, 5.0),
+        let shape = smooth_shape(random);
+        let xs: Vec<f64> = (0..512)
+            .map(|i| scale * shape(TAU * i as f64 / 512.0).0)
+            .collect();
+        let (left, right) = (
+            xs.iter().copied().fold(f64::INFINITY, f64::min),
+            xs.iter().copied().fold(f64::NEG_INFINITY, f64::max),
         );
-        paths.push(parametric(
-            placed(smooth_shape(random), centre, scale),
-            0.0,
-            TAU,
-            true,
-        ));
+        let centre = (cursor - left, random.range(-5.0, 5.0));
+        cursor = centre.0 + right + random.range(1.0, 15.0);
+        paths.push(parametric(placed(shape, centre, scale), 0.0, TAU, true));
     }
     let mut scene = Scene::default();
     for samples in feature_size_samples(&paths, epsilon, random) {
         scene = scene.curve(samples, true);
     }
-    Instance::new(
-        "lfs-closed",
-        format!("{count} curve(s), ε = {epsilon}"),
-        scene,
-        random,
-    )
+    scene
 }
 
-fn lfs_open(random: &mut Random, k: usize) -> Instance {
-    let epsilon = EPSILONS[k % 3];
+/// A random part (20-75 %) of a random smooth closed curve, sampled at `epsilon` × its local
+/// feature size (as an open curve: the missing part does not count).
+pub fn feature_size_open(random: &mut Random, epsilon: f64) -> Scene {
     let scale = random.range(10.0, 30.0);
     let shape = placed(smooth_shape(random), (0.0, 0.0), scale);
     let start = random.range(0.0, TAU);
     let fraction = random.range(0.2, 0.75);
     let path = parametric(shape, start, start + fraction * TAU, false);
     let samples = feature_size_samples(&[path], epsilon, random).remove(0);
-    Instance::new(
-        "lfs-open",
-        format!("{:.0} % of a closed shape, ε = {epsilon}", fraction * 100.0),
-        Scene::default().curve(samples, false),
-        random,
-    )
+    Scene::default().curve(samples, false)
+}
+
+fn lfs_closed(random: &mut Random, k: usize) -> Instance {
+    let epsilon = EPSILONS[k % 3];
+    let count = 1 + random.below(3);
+    let scene = feature_size_closed(random, epsilon, count);
+    let label = format!("{count} curve(s), ε = {epsilon}");
+    Instance::new("lfs-closed", label, scene, random)
+}
+
+fn lfs_open(random: &mut Random, k: usize) -> Instance {
+    let epsilon = EPSILONS[k % 3];
+    let scene = feature_size_open(random, epsilon);
+    Instance::new("lfs-open", format!("ε = {epsilon}"), scene, random)
 }
 
 fn non_uniform(random: &mut Random, _k: usize) -> Instance {

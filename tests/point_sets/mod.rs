@@ -76,6 +76,11 @@ impl Scene {
         self.curves.push((samples, closed));
         self
     }
+
+    pub fn strays(mut self, strays: Vec<Xy>) -> Self {
+        self.strays.extend(strays);
+        self
+    }
 }
 
 /// A point set with its true edges and outliers, as indices into `points`.
