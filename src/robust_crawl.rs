@@ -7,19 +7,28 @@
 //! `docs/point-sets.md`; the paper's crawl stays in [`crate::reconstruct`].
 //!
 //! In short:
-//! - **Seeds** are triples (p, v, q) where the curve is plainest: two near neighbours of v on
-//!   opposite sides, of similar length; the straightest and densest first. A seed that is much
-//!   sparser than a curve already found right beside it is a stray and is not used.
-//! - **Steps** go to the unvisited Delaunay neighbour of an extremity that best continues the
-//!   chain: its length weighed by how much the chain would turn (good continuation). A step may be
-//!   at most [`STEP_LIMIT`] times the chain's recent spacing and [`CANDIDATE_LIMIT`] times the
-//!   candidate's own second-nearest distance. A turn back of more than 120° is taken only when the
-//!   step after it goes on gently (a corner, not a zig-zag).
-//! - **Closing** is a step from one extremity to the other, with the same limits, taken when it
-//!   is better than any other step and short against the chain's length.
-//! - A chain of fewer than [`MIN_CURVE_POINTS`] points is no curve; its points are free again.
-//! - **Tips**: a point left over whose two nearest points are consecutive on a curve, at similar
-//!   distances, is put back between them (the tip of a corner sharper than the crawl's turns).
+//! - **Seeds** are tried densest first (by each point's second-nearest distance). A seed is a
+//!   triple (p, v, q): two near neighbours of v, of similar length and turning at most 90°, the
+//!   straightest and shortest; its edges pass the same limits as any step.
+//! - **Steps** go to the free Delaunay neighbour of an extremity that best continues the chain:
+//!   its length weighed by how much the chain would turn (good continuation). A step is at most
+//!   [`STEP_LIMIT`] times the chain's spacing at that end and [`CANDIDATE_LIMIT`] times the
+//!   candidate's own second-nearest distance, never lands in the middle of a free strand, turns
+//!   back by more than 120° only when the step after it goes on gently (a corner, not a
+//!   zig-zag), and goes to a dead end only when nothing else goes on.
+//! - **Closing** is a step from one extremity to the other, under the same limits, taken when it
+//!   is at least as good as any other step and short against the chain's length.
+//! - A chain of fewer than [`MIN_CURVE_POINTS`] points is no curve; a chain [`SPARSE_RATIO`] times
+//!   sparser than a curve found before, right beside it, is strays unless it is long and regular.
+//!   Either way its points are free again.
+//! - **Joins**: chain ends that are Delaunay neighbours are joined where the step between them
+//!   is acceptable from both sides.
+//! - **Skipped points**: one to three points left over between the two ends of a chain edge, each
+//!   with its two nearest points as its neighbours on that detour, are put back (the tip of a
+//!   corner sharper than the crawl's turns, the bottom of a notch narrower than the spacing).
+//!
+//! Every output edge is a Delaunay edge: steps, closing edges and joins follow Delaunay edges, and
+//! a skipped point goes back between its two nearest Delaunay neighbours.
 
 mod grow;
 mod join;
@@ -39,6 +48,12 @@ use measure::Local;
 /// A step may be at most this many times the chain's spacing at its extremity (the longer of its
 /// last two edges). Feature-size sampling changes the spacing by at most 1 + ε ≈ 1.5 per step;
 /// strays kept 4 spacings off a curve, and the ends of other curves 3 spacings away, stay out.
+///
+/// DECISION: 2.5, not the "about 4": the candidate-side limit ([`CANDIDATE_LIMIT`]) and
+/// the strand rule keep a chain end off other curves, so this limit only has to keep strays out,
+/// and 4 would take a stray 4 spacings off a curve whose last edges are a little long. No floor
+/// by the end's second-nearest distance is needed: a seed is a triple within the limits, and the
+/// spacing is the longer of the last two edges, so a short edge does not freeze a chain.
 pub const STEP_LIMIT: f64 = 2.5;
 
 /// A step may be at most this many times the candidate's own second-nearest distance: a point
@@ -57,20 +72,23 @@ pub const SHARP_TURN_COS: f64 = -0.5;
 /// "Gently": the step after a sharp turn turns by at most 60° (cosine at least 1/2).
 pub const ONWARD_TURN_COS: f64 = 0.5;
 
-/// A chain needs this many points to be a curve. The paper checks nothing before a chain has
+/// A chain needs this many points to be a curve.
+///
+/// DECISION: 4, where the paper keeps chains of 3. The paper checks nothing before a chain has
 /// three edges (its termination and closing tests both need "more than two edges"), so a chain of
-/// two edges carries no evidence: any three points make one.
+/// two edges carries no evidence: any three points make one (three strays in a row, for one).
 pub const MIN_CURVE_POINTS: usize = 4;
 
-/// An open chain this long that is also regular (no turn over 60°, no edge over twice its
-/// neighbour) is a curve even where it is sparse beside a denser one: eight points make six turns
-/// and seven edges, and strays scattered at random rarely line up like that (none did in 300
-/// sets of the outliers family with 20 % strays); shorter smooth runs of strays do.
+/// A chain this long that is also regular (no turn over 60°, no edge over twice its neighbour) is
+/// a curve even where it is sparse beside a denser one: eight points make six turns and seven
+/// edges, and strays scattered at random rarely line up like that (none did in 300 sets of the
+/// outliers family with 20 % strays); shorter smooth runs of strays do, and so do closed loops of
+/// strays, so closing is no evidence.
 pub const EVIDENT_CURVE_POINTS: usize = 8;
 
-/// A seed or a chain this many times sparser than a curve point beside it is strays. Strays kept
-/// 4 spacings off a curve are typically 5 or more spacings apart; two curves sampled at densities
-/// a factor of 2 apart side by side are both kept.
+/// A chain this many times sparser than a curve point beside it (its median edge against that
+/// point's second-nearest distance) is strays, unless it is evident as a curve. Strays kept 4
+/// spacings off a curve are typically 5 or more spacings apart, and clusters of them 2 to 4.
 pub const SPARSE_RATIO: f64 = 2.0;
 
 /// "Beside": within this many of the strays' own spacings, beyond the reach of their own steps

@@ -185,8 +185,8 @@ impl<'a> Crawler<'a> {
         let vertices: Vec<u32> = chain.vertices.iter().copied().collect();
         let is_curve = vertices.len() >= MIN_CURVE_POINTS;
         let strays = is_curve
-            && !(vertices.len() >= EVIDENT_CURVE_POINTS && self.regular(&vertices, closed))
-            && self.sparse_beside_curves(&vertices, self.median_edge(&vertices, closed), id);
+            && self.sparse_beside_curves(&vertices, self.median_edge(&vertices, closed), id)
+            && !(vertices.len() >= EVIDENT_CURVE_POINTS && self.regular(&vertices, closed));
         if !is_curve || strays {
             for &v in &vertices {
                 self.set_owner(v, FREE);
@@ -201,15 +201,16 @@ impl<'a> Crawler<'a> {
         });
     }
 
-    /// Whether `points` (a seed or a grown chain, owned by `id`, with typical edge `spacing`) are
-    /// much sparser than a curve found before, right beside them: strays, not a curve.
+    /// Whether `points` (a grown chain, owned by `id`, with median edge `spacing`) are much
+    /// sparser than a curve found before, right beside them: strays, unless evident as a curve.
     ///
     /// DECISION: "beside" is a Delaunay neighbour of one of the points, on another curve, within
     /// [`BESIDE`] spacings; "much sparser" is a spacing above [`SPARSE_RATIO`] times that
-    /// neighbour's second-nearest distance. Curves are found densest first, so the curves strays
-    /// lie among are known when the strays' seeds come up; a sparse curve away from denser ones
-    /// (or denser by less than the ratio) is kept. Both the seed and the grown chain are checked:
-    /// a seed on the far side of a cluster of strays sees no curve, the whole chain does.
+    /// neighbour's second-nearest distance. Seeds go densest first, so the curves strays lie among
+    /// are known when the strays' seeds come up; a sparse curve away from denser ones (or denser
+    /// by less than the ratio) is kept. The grown chain is judged, not the seed: a seed on the far
+    /// side of a cluster of strays sees no curve, the whole chain does; and a seed beside a denser
+    /// curve may start a long, regular curve of its own.
     fn sparse_beside_curves(&self, points: &[u32], spacing: f64, id: u32) -> bool {
         let squared_spacing = spacing * spacing;
         if squared_spacing <= SPARSE_RATIO * SPARSE_RATIO * self.densest {
@@ -303,12 +304,15 @@ impl<'a> Crawler<'a> {
             chain.add(end, step.to, self.local.squared_length(extremity, step.to));
             self.set_owner(step.to, id);
             best[end.index()] = self.best_step(chain, end);
-            // The other extremity's best step stands unless this step took its point or a
-            // neighbour of it (which may have been its way on).
+            // The other extremity's best step stands unless this step took its point, one of its
+            // two nearest points, or a point within its reach (its way on, maybe).
             let other = end.other();
-            let graph = self.local.graph;
-            if best[other.index()].is_some_and(|s| s.to == step.to || graph.has_edge(s.to, step.to))
-            {
+            let reach = STEP_LIMIT * STEP_LIMIT * chain.squared_spacing(other);
+            if best[other.index()].is_some_and(|s| {
+                s.to == step.to
+                    || self.local.samples[s.to as usize].nearest.contains(&step.to)
+                    || self.local.squared_length(s.to, step.to) <= reach
+            }) {
                 best[other.index()] = self.best_step(chain, other);
             }
         }

@@ -1,6 +1,6 @@
-//! Seeds of the robust crawl: at each point, the two neighbours that make the plainest piece of
-//! curve through it — similar lengths, within the step limits, turning at most 90° — scored like
-//! a step (length weighed by turn), and all seeds ordered best first.
+//! Seeds of the robust crawl: the order in which points are tried (densest first), and at a
+//! point the two neighbours that make the plainest piece of curve through it — similar lengths,
+//! within the step limits, turning at most 90° — scored like a step (length weighed by turn).
 //!
 //! The paper seeds with the shortest edge between mutual nearest neighbours and adds its first two
 //! candidates unchecked; two stray points closer than the spacing then seed first and grow into a

@@ -19,6 +19,9 @@ use crate::reconstruct::Chain;
 /// times the curve's spacing beside the skipped edge, so a stray kept off the curve is never
 /// taken in. A point whose nearest two are not its detour neighbours stays an outlier.
 pub fn put_back_tips(local: &Local, chains: &mut [Chain], free: &[bool]) {
+    if !free.contains(&true) {
+        return;
+    }
     // Where each vertex sits: (chain, position).
     let mut place: Vec<Option<(usize, usize)>> = vec![None; local.vertex_count()];
     for (c, chain) in chains.iter().enumerate() {
