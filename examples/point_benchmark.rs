@@ -6,8 +6,8 @@
 //! validation seed, only ever measured. Both are printed, as the table in `docs/point-sets.md`.
 //!
 //! ```sh
-//! cargo run --release --example point_benchmark                  # both seeds, 40 sets a family
-//! cargo run --release --example point_benchmark -- --sets 100    # more sets a family
+//! cargo run --release --example point_benchmark                  # both seeds, 100 sets a family
+//! cargo run --release --example point_benchmark -- --sets 20     # a quicker look
 //! cargo run --release --example point_benchmark -- --seed development --family sectors --failures
 //! cargo run --release --example point_benchmark -- --write DIR   # the point files, to look at
 //! ```
@@ -38,7 +38,7 @@ struct Options {
 
 fn options() -> Options {
     let mut options = Options {
-        sets: 40,
+        sets: 100,
         seeds: vec![
             ("development", DEVELOPMENT_SEED),
             ("validation", VALIDATION_SEED),
@@ -50,7 +50,7 @@ fn options() -> Options {
     let mut args = std::env::args().skip(1);
     while let Some(arg) = args.next() {
         match arg.as_str() {
-            "--sets" => options.sets = args.next().and_then(|v| v.parse().ok()).unwrap_or(40),
+            "--sets" => options.sets = args.next().and_then(|v| v.parse().ok()).unwrap_or(100),
             "--seed" => {
                 let which = args.next().unwrap_or_default();
                 options.seeds.retain(|(name, _)| *name == which);
@@ -159,10 +159,15 @@ fn main() {
         let rate = |count: usize| 100.0 * count as f64 / sets.max(1) as f64;
         let _ = write!(
             table,
-            " **{:.0} %** | **{:.0} %** |",
+            " **{:.0} %** ({paper}) | **{:.0} %** ({robust}) |",
             rate(paper),
             rate(robust)
         );
     }
     println!("{table}");
+    for family in FAMILIES {
+        if options.family.as_deref().is_none_or(|f| f == family.name) {
+            println!("- **{}**: {}", family.name, family.what);
+        }
+    }
 }

@@ -69,7 +69,7 @@ pub const FAMILIES: &[Family] = &[
     },
     Family {
         name: "noise",
-        what: "smooth closed curves, spacing 1, Gaussian noise of 0.05, 0.1 or 0.15 spacings",
+        what: "a smooth closed curve, spacing 1, Gaussian noise of 0.05, 0.1 or 0.15 spacings",
         make: noise,
     },
     Family {
