@@ -1,6 +1,6 @@
-//! Benchmarks of point-set reconstruction (divan): the Delaunay triangulation, the crawl on it, the
-//! whole `reconstruct`, and the file stages of `crawltrace points` (parsing, JSON), on 10k, 100k and
-//! 1M points sampled from many closed curves.
+//! Benchmarks of point-set reconstruction (divan): the Delaunay triangulation, the crawls on it
+//! (the paper's and the robust one), the whole `reconstruct` by each, and the file stages of
+//! `crawltrace points` (parsing, JSON), on 10k, 100k and 1M points sampled from many closed curves.
 //!
 //! ```sh
 //! cargo bench --bench reconstruct
@@ -9,7 +9,7 @@
 use std::f64::consts::TAU;
 
 use crawltrace::reconstruct::{crawl, paper_closable, reconstruct, NeighbourGraph};
-use crawltrace::{pointfile, pointset, Point};
+use crawltrace::{pointfile, pointset, robust_crawl, Point};
 use divan::{black_box, Bencher};
 
 fn main() {
@@ -87,9 +87,22 @@ fn crawl_on_triangulation(bencher: Bencher, count: usize) {
 }
 
 #[divan::bench(args = SIZES, sample_count = 5, sample_size = 1)]
+fn robust_crawl_on_triangulation(bencher: Bencher, count: usize) {
+    let positions = canonical(&curve_points(count));
+    let graph = NeighbourGraph::delaunay(&positions).unwrap();
+    bencher.bench(|| robust_crawl::crawl(black_box(&positions), black_box(&graph)));
+}
+
+#[divan::bench(args = SIZES, sample_count = 5, sample_size = 1)]
 fn reconstruct_whole(bencher: Bencher, count: usize) {
     let points = curve_points(count);
     bencher.bench(|| reconstruct(black_box(&points)).unwrap());
+}
+
+#[divan::bench(args = SIZES, sample_count = 5, sample_size = 1)]
+fn reconstruct_robust_whole(bencher: Bencher, count: usize) {
+    let points = curve_points(count);
+    bencher.bench(|| robust_crawl::reconstruct(black_box(&points)).unwrap());
 }
 
 /// The point file `crawltrace points` would read for `count` points.
