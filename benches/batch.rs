@@ -5,10 +5,10 @@
 //! - with a CPU-bound fake processor (about 5 ms of hashing a file), which measures the engine
 //!   alone, and with a processor that does nothing (the engine's own cost per file).
 //!
-//! The allocator settings of the binary (`src/allocator.rs`) are applied as in `crawltrace`. What
-//! they bring does not show here even without them: generating the drawings frees large blocks
-//! first, which raises glibc's adaptive thresholds before any timing. It shows on the binary
-//! (see `src/allocator.rs`).
+//! The allocator settings of the binary (`src/bin/crawltrace/allocator.rs`) are applied as in
+//! `crawltrace`. What they bring does not show here even without them: generating the drawings
+//! frees large blocks first, which raises glibc's adaptive thresholds before any timing. It shows
+//! on the binary (see that file).
 //!
 //! Run: `cargo bench --bench batch` (only the real tracer: `cargo bench --bench batch -- real`).
 //!
@@ -23,8 +23,10 @@ use std::hint::black_box;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 
-use crawltrace::batch::{discover_inputs, fnv1a_64, run_batch, BatchOptions, FileResult};
-use crawltrace::trace::{trace_file_to_svg, TraceOptions};
+use crawltrace::batch::{
+    discover_inputs, fnv1a_64, run_batch, trace_file_to_svg, BatchOptions, FileResult,
+};
+use crawltrace::TraceOptions;
 use divan::counter::ItemsCount;
 use divan::Bencher;
 use image::{DynamicImage, ImageFormat};
@@ -41,7 +43,7 @@ const DRAWING_SIDE: u32 = 1000;
 /// The generated drawings, made on first use and deleted when the benchmarks end.
 static DRAWINGS: Mutex<Option<tempfile::TempDir>> = Mutex::new(None);
 
-#[path = "../src/allocator.rs"]
+#[path = "../src/bin/crawltrace/allocator.rs"]
 mod allocator;
 
 fn main() {
@@ -131,7 +133,7 @@ fn drawings() -> PathBuf {
         let mut random = SplitMix64(2016);
         for index in 0..FILES {
             let svg = drawing_svg(&mut random);
-            let rgba = crawltrace::render::render_svg(&svg, 1.0).expect("the drawing renders");
+            let rgba = crawltrace::render_svg(&svg, 1.0).expect("the drawing renders");
             let folder = root.path().join(format!("group-{}", index % 10));
             fs::create_dir_all(&folder).expect("a subfolder");
             DynamicImage::ImageRgba8(rgba)
@@ -255,7 +257,7 @@ fn run_batch_200_files_no_work(bencher: Bencher, jobs: usize) {
         discover_inputs(&[input.path().to_path_buf()], &options).expect("the inputs are found");
     bencher.counter(ItemsCount::new(FILES)).bench(|| {
         run_batch(&discovery, output.path(), &options, |_| {
-            Ok(FileResult {
+            Ok::<_, std::convert::Infallible>(FileResult {
                 svg: b"<svg xmlns=\"http://www.w3.org/2000/svg\"/>".to_vec(),
                 curves: 0,
                 closed_curves: 0,

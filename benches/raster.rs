@@ -3,10 +3,10 @@
 
 use std::sync::LazyLock;
 
-use crawltrace::binarize::{binarize, BinarizeOptions, ThresholdMethod};
-use crawltrace::bitmap::Bitmap;
-use crawltrace::clean::{clean, estimate_stroke_width};
-use crawltrace::thin::thin;
+use crawltrace::stages::binarize::{binarize, BinarizeOptions, ThresholdMethod};
+use crawltrace::stages::bitmap::Bitmap;
+use crawltrace::stages::clean::{clean, estimate_stroke_width};
+use crawltrace::stages::thin::thin;
 use divan::{black_box, Bencher};
 use image::{GrayImage, Luma};
 

@@ -1,5 +1,5 @@
 //! Benchmarks of point-set reconstruction (divan): the Delaunay triangulation, the crawls on it
-//! (the paper's and the robust one), the whole `reconstruct` by each, and the file stages of
+//! (the paper's and the robust one), the whole reconstruction by each, and the file stages of
 //! `crawltrace points` (parsing, JSON), on 10k, 100k and 1M points sampled from many closed curves.
 //!
 //! ```sh
@@ -8,8 +8,12 @@
 
 use std::f64::consts::TAU;
 
-use crawltrace::reconstruct::{crawl, paper_closable, reconstruct, NeighbourGraph};
-use crawltrace::{pointfile, pointset, robust_crawl, Point};
+use crawltrace::stages::crawl::algorithm::crawl;
+use crawltrace::stages::crawl::neighbours::NeighbourGraph;
+use crawltrace::stages::crawl::reconstruct::paper_closable;
+use crawltrace::stages::crawl::robust;
+use crawltrace::stages::points::write as pointset;
+use crawltrace::{parse_points, reconstruct, reconstruct_robust, Point};
 use divan::{black_box, Bencher};
 
 fn main() {
@@ -90,7 +94,7 @@ fn crawl_on_triangulation(bencher: Bencher, count: usize) {
 fn robust_crawl_on_triangulation(bencher: Bencher, count: usize) {
     let positions = canonical(&curve_points(count));
     let graph = NeighbourGraph::delaunay(&positions).unwrap();
-    bencher.bench(|| robust_crawl::crawl(black_box(&positions), black_box(&graph)));
+    bencher.bench(|| robust::crawl(black_box(&positions), black_box(&graph)));
 }
 
 #[divan::bench(args = SIZES, sample_count = 5, sample_size = 1)]
@@ -102,7 +106,7 @@ fn reconstruct_whole(bencher: Bencher, count: usize) {
 #[divan::bench(args = SIZES, sample_count = 5, sample_size = 1)]
 fn reconstruct_robust_whole(bencher: Bencher, count: usize) {
     let points = curve_points(count);
-    bencher.bench(|| robust_crawl::reconstruct(black_box(&points)).unwrap());
+    bencher.bench(|| reconstruct_robust(black_box(&points)).unwrap());
 }
 
 /// The point file `crawltrace points` would read for `count` points.
@@ -117,7 +121,7 @@ fn point_file(count: usize) -> Vec<u8> {
 #[divan::bench(args = SIZES, sample_count = 5, sample_size = 1)]
 fn parse_point_file(bencher: Bencher, count: usize) {
     let bytes = point_file(count);
-    bencher.bench(|| pointfile::parse_points(black_box(&bytes)).unwrap());
+    bencher.bench(|| parse_points(black_box(&bytes)).unwrap());
 }
 
 #[divan::bench(args = SIZES, sample_count = 5, sample_size = 1)]

@@ -12,17 +12,18 @@ use std::fmt;
 use std::sync::LazyLock;
 use std::time::{Duration, Instant};
 
-use crawltrace::binarize::{binarize, BinarizeOptions};
-use crawltrace::bitmap::Bitmap;
-use crawltrace::clean::{clean, estimate_stroke_width};
-use crawltrace::decode::{decode_image, to_gray};
-use crawltrace::fit::FitOptions;
-use crawltrace::sample::{default_spacing, simplification_tolerance};
-use crawltrace::sketch::{connect, Method, SampledStroke, TracedCurve};
-use crawltrace::strokes::{extract_strokes, Stroke};
-use crawltrace::svg::{to_svg, Drawing};
-use crawltrace::thin::thin;
-use crawltrace::trace::{fit_paths, sample_strokes, TraceOptions};
+use crawltrace::stages::binarize::{binarize, BinarizeOptions};
+use crawltrace::stages::bitmap::Bitmap;
+use crawltrace::stages::clean::{clean, estimate_stroke_width};
+use crawltrace::stages::crawl::strokes::{connect, end_extension, minimum_curve_length, Method};
+use crawltrace::stages::decode::{decode_image, to_gray};
+use crawltrace::stages::fit::{default_tolerance, fit_paths, FitOptions};
+use crawltrace::stages::geometry::Polyline;
+use crawltrace::stages::strokes::{
+    default_spacing, extract_strokes, sample_strokes, simplification_tolerance, Stroke,
+};
+use crawltrace::stages::thin::thin;
+use crawltrace::{to_svg, Drawing, TraceOptions};
 use divan::{black_box, Bencher};
 use image::{DynamicImage, GrayImage};
 
@@ -58,8 +59,8 @@ struct Pipeline {
     skeleton: Bitmap,
     strokes: Vec<Stroke>,
     spacing: f64,
-    sampled: Vec<SampledStroke>,
-    curves: Vec<TracedCurve>,
+    sampled: Vec<Stroke>,
+    curves: Vec<Polyline>,
     fit_options: FitOptions,
     drawing: Drawing,
 }
@@ -80,12 +81,12 @@ impl Pipeline {
             &sampled,
             Method::Strokes,
             spacing,
-            2.0 * stroke_width,
-            0.5 * stroke_width,
+            minimum_curve_length(stroke_width),
+            end_extension(stroke_width),
         );
         let fit_options = FitOptions {
             smooth: true,
-            tolerance: (0.25 * stroke_width).max(0.5),
+            tolerance: default_tolerance(stroke_width),
         };
         let traced = crawltrace::trace(&image, &TraceOptions::default()).expect("the page traces");
         let drawing = traced.drawing;
@@ -168,7 +169,7 @@ fn print_shares(page: Page) {
         p.bytes.len(),
         p.stroke_width,
         p.strokes.len(),
-        p.sampled.iter().map(|s| s.points.len()).sum::<usize>(),
+        p.sampled.iter().map(|s| s.line.points.len()).sum::<usize>(),
         p.drawing.paths.len(),
     );
     eprintln!("| stage | median ms | share |\n|---|---:|---:|");
@@ -256,8 +257,8 @@ fn stage_7_reconstruct(bencher: Bencher, page: Page) {
             black_box(&p.sampled),
             Method::Strokes,
             p.spacing,
-            2.0 * p.stroke_width,
-            0.5 * p.stroke_width,
+            minimum_curve_length(p.stroke_width),
+            end_extension(p.stroke_width),
         )
     });
 }

@@ -9,9 +9,9 @@ mod pages;
 use std::fs;
 use std::path::PathBuf;
 
-use crawltrace::binarize::{binarize, BinarizeOptions};
-use crawltrace::clean::{clean, estimate_stroke_width};
-use crawltrace::decode::{decode_image, to_gray};
+use crawltrace::stages::binarize::{binarize, BinarizeOptions};
+use crawltrace::stages::clean::{clean, estimate_stroke_width};
+use crawltrace::stages::decode::{decode_image, to_gray};
 
 fn main() {
     let Some(folder) = std::env::args_os().nth(1).map(PathBuf::from) else {

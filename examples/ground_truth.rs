@@ -12,8 +12,8 @@ mod support;
 
 use std::path::{Path, PathBuf};
 
-use crawltrace::sketch::Method;
-use crawltrace::{decode, svg, trace, TraceOptions};
+use crawltrace::stages::decode;
+use crawltrace::{to_svg, trace, Method, TraceOptions};
 
 /// How one method did on one sample.
 struct Score {
@@ -32,7 +32,7 @@ fn score(image: &Path, truth_svg: &str, method: Method) -> Score {
         ..TraceOptions::default()
     };
     let output = match trace(&picture, &options) {
-        Ok(traced) => support::load_curves(&svg::to_svg(&traced.drawing)),
+        Ok(traced) => support::load_curves(&to_svg(&traced.drawing)),
         Err(_) => Vec::new(),
     };
     let report = support::match_curves(&truth, &output, pen / 2.0 + 2.0);

@@ -15,7 +15,7 @@ mod sketch;
 
 use std::path::{Path, PathBuf};
 
-use crawltrace::svg::{to_svg, CurvePath, Drawing};
+use crawltrace::{to_svg, CurvePath, Drawing};
 use kurbo::Affine;
 
 use geometry::TrueCurve;
@@ -100,7 +100,7 @@ fn write_sample(folder: &Path, name: &str, style: Style, seed: u64, scene: &Scen
     // People start anywhere and draw in any order.
     random.shuffle(&mut strokes);
     let sketch_svg = sketch::strokes_to_svg(scene.width, scene.height, &strokes);
-    let rendered = crawltrace::render::render_svg(&sketch_svg, 1.0).expect("sketch renders");
+    let rendered = crawltrace::render_svg(&sketch_svg, 1.0).expect("sketch renders");
     let image_path = folder.join(format!("{name}.{}", style.extension()));
     std::fs::write(&image_path, style.encode(&rendered, seed)).expect("cannot write the image");
     let truth_path = folder.join(format!("{name}.truth.svg"));

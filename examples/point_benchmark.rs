@@ -18,7 +18,7 @@ mod point_sets;
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
-use crawltrace::{reconstruct, robust_crawl};
+use crawltrace::{reconstruct, reconstruct_robust};
 use point_sets::families::FAMILIES;
 use point_sets::{Instance, Random};
 use rayon::prelude::*;
@@ -87,8 +87,8 @@ struct Outcome {
 }
 
 fn run(instance: &Instance) -> Outcome {
-    let paper = reconstruct::reconstruct(&instance.points).expect("generated points are valid");
-    let robust = robust_crawl::reconstruct(&instance.points).expect("generated points are valid");
+    let paper = reconstruct(&instance.points).expect("generated points are valid");
+    let robust = reconstruct_robust(&instance.points).expect("generated points are valid");
     let robust_mismatch = instance.mismatch(&robust);
     Outcome {
         paper: instance.mismatch(&paper).is_none(),

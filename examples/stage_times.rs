@@ -8,8 +8,11 @@
 
 use std::time::Instant;
 
-use crawltrace::reconstruct::{crawl, paper_closable, reconstruct, NeighbourGraph};
-use crawltrace::{pointfile, pointset, Point};
+use crawltrace::stages::crawl::algorithm::crawl;
+use crawltrace::stages::crawl::neighbours::NeighbourGraph;
+use crawltrace::stages::crawl::reconstruct::paper_closable;
+use crawltrace::stages::points::write as pointset;
+use crawltrace::{parse_points, reconstruct, Point};
 
 fn main() {
     let Some(path) = std::env::args().nth(1) else {
@@ -47,7 +50,7 @@ fn run(path: &str) -> [f64; 7] {
     let read = clock.elapsed();
 
     let clock = Instant::now();
-    let file = pointfile::parse_points(&bytes).expect("a valid point file");
+    let file = parse_points(&bytes).expect("a valid point file");
     let parse = clock.elapsed();
 
     // The distinct points in lexicographic order, as `reconstruct` triangulates them.

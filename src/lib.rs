@@ -1,38 +1,59 @@
 //! crawltrace turns scanned skip-stroke line drawings and raw 2D point sets into clean vector
-//! curves, with the Crawl through Neighbors reconstruction (Parakkat & Muthuganapathy, 2016) at its
-//! heart. The pipeline and its conventions are described in `../shared/DESIGN.md`.
+//! curves, with the Crawl through Neighbors reconstruction (S. N. Parakkat and
+//! R. Muthuganapathy, Computer Graphics Forum 35(5), 2016) at its heart. The pipeline and its
+//! conventions are described in `docs/design.md`.
 //!
-//! Images: [`trace()`] takes a decoded image ([`decode::decode_image`]) and returns a
-//! [`Drawing`], one path per drawn shape, which [`svg::to_svg`] writes.
+//! # Entry points
 //!
-//! Point sets: [`reconstruct::reconstruct`] takes points and returns curves as chains of input
-//! indices, each open or closed, plus the outliers.
+//! | task | function | result |
+//! |---|---|---|
+//! | trace an image in memory | [`trace()`] | [`Traced`]: a [`Drawing`], one path per drawn shape |
+//! | trace an image file | [`trace_file`] | [`Traced`] |
+//! | write SVG | [`to_svg`] | the SVG text of a [`Drawing`] |
+//! | reconstruct curves from points (the paper's crawl) | [`reconstruct()`] | [`Reconstruction`]: chains of input indices, open or closed, and outliers |
+//! | reconstruct curves from points with stray points, sharp corners, open ends or thin parts (the robust crawl, `crawltrace points`' default) | [`reconstruct_robust()`] | [`Reconstruction`] |
+//! | read a point file | [`parse_points`] | [`PointFile`]: the points and their line numbers |
+//! | render SVG to pixels | [`render_svg`] | an RGBA image |
 //!
-//! Images, stage by stage: [`decode::decode_image`] and [`decode::to_gray`] → [`binarize::binarize`]
-//! → [`clean::estimate_stroke_width`] and [`clean::clean`] → [`thin::thin`], a 1-px skeleton.
+//! Folders of images are traced by [`batch`]; every stage of the pipeline is in [`stages`], for
+//! benchmarks, tests and front ends that run a stage on its own.
+//!
+//! ```
+//! use crawltrace::{reconstruct, Point};
+//!
+//! // Twelve points on a circle are one closed curve.
+//! let points: Vec<Point> = (0..12)
+//!     .map(|k| f64::from(k) * std::f64::consts::TAU / 12.0)
+//!     .map(|angle| Point::new(angle.cos(), angle.sin()))
+//!     .collect();
+//! let reconstruction = reconstruct(&points)?;
+//! assert_eq!(reconstruction.curves.len(), 1);
+//! assert!(reconstruction.curves[0].closed);
+//! # Ok::<(), crawltrace::ReconstructError>(())
+//! ```
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
 pub mod batch;
-pub mod binarize;
-pub mod bitmap;
-pub mod clean;
-pub mod debug;
-pub mod decode;
-pub mod fit;
-pub mod pointfile;
-pub mod pointset;
-pub mod reconstruct;
-pub mod render;
-pub mod robust_crawl;
-pub mod sample;
-pub mod sketch;
-pub mod strokes;
-pub mod svg;
-pub mod thin;
-pub mod trace;
+pub mod files;
+pub mod stages;
+
+mod crawl;
+mod geometry;
+mod output;
+mod points;
+mod raster;
+mod strokes;
+mod trace;
 
 pub use kurbo::Point;
-pub use reconstruct::{reconstruct, Curve, Reconstruction};
-pub use svg::{CurvePath, Drawing};
-pub use trace::{trace, TraceError, TraceOptions, Traced};
+
+pub use crawl::reconstruct::{reconstruct, Curve, MergedDuplicate, Reconstruction};
+pub use crawl::robust::reconstruct as reconstruct_robust;
+pub use crawl::strokes::Method;
+pub use crawl::ReconstructError;
+pub use output::render::{render_svg, RenderError};
+pub use output::svg::{to_svg, CurvePath, Drawing};
+pub use points::read::{parse_points, PointFile, PointFileError};
+pub use raster::binarize::{BinarizeOptions, ThresholdMethod};
+pub use trace::{trace, trace_file, TraceError, TraceFileError, TraceOptions, TraceReport, Traced};

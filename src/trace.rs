@@ -1,24 +1,24 @@
-//! The tracing pipeline of `../shared/DESIGN.md`: gray → binarize → clean → thin → strokes →
+//! The tracing pipeline of `docs/design.md`: gray → binarize → clean → thin → strokes →
 //! sample → reconstruct (the crawl) → fit → [`Drawing`]; every stage is a module of its own.
 
 use std::borrow::Cow;
+use std::io;
 use std::path::Path;
 use std::time::{Duration, Instant};
 
 use image::{DynamicImage, GrayImage};
-use kurbo::Point;
 
-use crate::batch::{describe_io, FileResult};
-use crate::binarize::{binarize, BinarizeOptions, MethodUsed};
-use crate::bitmap::Bitmap;
-use crate::clean::{clean, estimate_stroke_width, CleanReport};
-use crate::decode::{decode_image, to_gray};
-use crate::fit::{fit_curve, FitOptions};
-use crate::sample::{default_spacing, polyline_length, sample_polyline, simplification_tolerance};
-use crate::sketch::{connect, Method, SampledStroke, TracedCurve};
-use crate::strokes::{extract_strokes, Stroke};
-use crate::svg::{to_svg, CurvePath, Drawing};
-use crate::thin::thin;
+use crate::crawl::strokes::{connect, end_extension, minimum_curve_length, Method};
+use crate::files::describe_io;
+use crate::output::debug::Stages;
+use crate::output::fit::{default_tolerance, fit_paths, FitOptions};
+use crate::output::svg::Drawing;
+use crate::raster::binarize::{binarize, BinarizeOptions, MethodUsed};
+use crate::raster::bitmap::Bitmap;
+use crate::raster::clean::{clean, estimate_stroke_width, CleanReport};
+use crate::raster::decode::{decode_image, to_gray, DecodeError};
+use crate::raster::thin::thin;
+use crate::strokes::{default_spacing, extract_strokes, sample_strokes, simplification_tolerance};
 
 /// What to do differently from the defaults. `TraceOptions::default()` needs no tuning.
 #[derive(Clone, Debug, PartialEq)]
@@ -84,25 +84,10 @@ pub struct TraceReport {
     pub timings: Vec<(&'static str, Duration)>,
 }
 
-/// The intermediate results, kept when [`TraceOptions::keep_stages`] is set.
-#[derive(Clone, Debug)]
-pub struct Stages {
-    /// The gray image the pipeline started from.
-    pub gray: GrayImage,
-    /// Ink after thresholding and cleaning.
-    pub mask: Bitmap,
-    /// The 1-px skeleton.
-    pub skeleton: Bitmap,
-    /// The sampled strokes.
-    pub strokes: Vec<SampledStroke>,
-    /// The reconstructed polylines before fitting.
-    pub curves: Vec<TracedCurve>,
-}
-
 /// The result of tracing an image.
 #[derive(Clone, Debug)]
 pub struct Traced {
-    /// The vector drawing, ready for [`crate::svg::to_svg`].
+    /// The vector drawing, ready for [`crate::output::svg::to_svg`].
     pub drawing: Drawing,
     /// What the stages measured and how long they took.
     pub report: TraceReport,
@@ -111,42 +96,40 @@ pub struct Traced {
 }
 
 /// Traces a line drawing into one vector path per drawn shape.
+///
+/// The image may be in any colour type; it is reduced to 8-bit gray first. With
+/// [`TraceOptions::default()`] nothing needs tuning: the threshold, the pen width, the sample
+/// spacing and the fitting tolerance are all measured on the image.
+///
+/// # Examples
+///
+/// ```
+/// use crawltrace::{to_svg, trace, TraceOptions};
+/// use image::{DynamicImage, GrayImage, Luma};
+///
+/// // A ring drawn 4 px wide on white paper.
+/// let ring = GrayImage::from_fn(200, 200, |x, y| {
+///     let radius = (f64::from(x) - 100.0).hypot(f64::from(y) - 100.0);
+///     Luma([if (radius - 60.0).abs() < 2.0 { 0 } else { 255 }])
+/// });
+/// let traced = trace(&DynamicImage::ImageLuma8(ring), &TraceOptions::default())?;
+/// assert_eq!(traced.drawing.paths.len(), 1);
+/// assert!(traced.drawing.paths[0].closed);
+/// assert!(to_svg(&traced.drawing).contains("Z\"/>"));
+/// # Ok::<(), crawltrace::TraceError>(())
+/// ```
+///
+/// # Errors
+///
+/// [`TraceError::NoInk`] when thresholding finds no ink: a blank page, or light ink on dark
+/// paper without [`BinarizeOptions::invert`].
 pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, TraceError> {
     let mut report = TraceReport::default();
-    let mut clock = Instant::now();
-    let mut lap = |report: &mut TraceReport, stage: &'static str| {
-        let now = Instant::now();
-        report.timings.push((stage, now - clock));
-        clock = now;
-    };
+    let mut watch = Stopwatch::start();
+    let raster = raster_stages(image, options, &mut report, &mut watch)?;
+    let stroke_width = raster.stroke_width;
 
-    // An 8-bit gray image is used as it is: copying it would cost a full image of memory.
-    let gray: Cow<'_, GrayImage> = match image {
-        DynamicImage::ImageLuma8(gray) => Cow::Borrowed(gray),
-        other => Cow::Owned(to_gray(other)),
-    };
-    lap(&mut report, "gray");
-    let binarized = binarize(&gray, &options.binarize);
-    let (width, height) = (f64::from(gray.width()), f64::from(gray.height()));
-    // Only --debug needs the gray image after thresholding; free it before the later stages.
-    let gray = options.keep_stages.then(|| gray.into_owned());
-    report.threshold = Some(binarized.method_used);
-    let mut mask = binarized.mask;
-    lap(&mut report, "binarize");
-    let stroke_width = estimate_stroke_width(&mask);
-    if stroke_width <= 0.0 {
-        return Err(TraceError::NoInk);
-    }
-    report.cleaned = clean(&mut mask, stroke_width);
-    report.stroke_width = stroke_width;
-    lap(&mut report, "clean");
-    if mask.count_ink() == 0 {
-        return Err(TraceError::NoInk);
-    }
-    let skeleton = thin(&mask);
-    lap(&mut report, "thin");
-
-    let strokes = extract_strokes(&skeleton, stroke_width);
+    let strokes = extract_strokes(&raster.skeleton, stroke_width);
     report.strokes = strokes.len();
     let spacing = options
         .spacing
@@ -154,33 +137,31 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
         .unwrap_or_else(|| default_spacing(stroke_width));
     report.spacing = spacing;
     let sampled = sample_strokes(&strokes, spacing, simplification_tolerance(stroke_width));
-    report.samples = sampled.iter().map(|s| s.points.len()).sum();
-    lap(&mut report, "strokes+sample");
+    report.samples = sampled.iter().map(|s| s.line.points.len()).sum();
+    watch.lap(&mut report, "strokes+sample");
 
-    // DECISION: a curve shorter than two pen widths is a stray mark (a speck that survived
-    // cleaning, a blot), not a shape.
     let curves = connect(
         &sampled,
         options.method,
         spacing,
-        2.0 * stroke_width,
-        0.5 * stroke_width,
+        minimum_curve_length(stroke_width),
+        end_extension(stroke_width),
     );
-    lap(&mut report, "reconstruct");
+    watch.lap(&mut report, "reconstruct");
 
     let fit_options = FitOptions {
         smooth: options.smooth,
         tolerance: options
             .simplify
             .filter(|t| t.is_finite() && *t >= 0.0)
-            .unwrap_or_else(|| (0.25 * stroke_width).max(0.5)),
+            .unwrap_or_else(|| default_tolerance(stroke_width)),
     };
     let paths = fit_paths(&curves, &fit_options);
-    lap(&mut report, "fit");
+    watch.lap(&mut report, "fit");
 
     let drawing = Drawing {
-        width,
-        height,
+        width: raster.width,
+        height: raster.height,
         paths,
         stroke_width: options
             .stroke_width
@@ -190,10 +171,10 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
         dots: Vec::new(),
         points: Vec::new(),
     };
-    let stages = gray.map(|gray| Stages {
+    let stages = raster.gray.map(|gray| Stages {
         gray,
-        mask,
-        skeleton,
+        mask: raster.mask,
+        skeleton: raster.skeleton,
         strokes: sampled,
         curves,
     });
@@ -204,59 +185,125 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
     })
 }
 
-/// Samples every stroke every `spacing` pixels after simplifying it within `tolerance` (the
-/// pipeline's "sample" stage, public so that benchmarks time exactly what [`trace`] runs).
-pub fn sample_strokes(strokes: &[Stroke], spacing: f64, tolerance: f64) -> Vec<SampledStroke> {
-    strokes
-        .iter()
-        .map(|stroke| {
-            // A loop needs at least four samples to be closable (the paper's "more than two
-            // edges"); small loops are sampled more densely.
-            let perimeter = polyline_length(&stroke.points, stroke.closed);
-            let stroke_spacing = if stroke.closed {
-                spacing.min(perimeter / 4.0)
-            } else {
-                spacing
-            };
-            SampledStroke {
-                points: sample_polyline(&stroke.points, stroke.closed, stroke_spacing, tolerance),
-                closed: stroke.closed,
-                ends: stroke.ends,
-            }
-        })
-        .collect()
+/// Measures the wall time of each stage into [`TraceReport::timings`].
+struct Stopwatch {
+    clock: Instant,
 }
 
-/// Fits every curve into a path and puts the paths in the SVG's stable order (the pipeline's
-/// "fit" stage, public so that benchmarks time exactly what [`trace`] runs).
-pub fn fit_paths(curves: &[TracedCurve], options: &FitOptions) -> Vec<CurvePath> {
-    let mut paths: Vec<CurvePath> = curves
-        .iter()
-        .map(|curve| CurvePath {
-            path: fit_curve(&curve.points, curve.closed, options),
-            closed: curve.closed,
-        })
-        .collect();
-    // Stable order for the SVG: by the path's first point, top to bottom, then left to right.
-    paths.sort_by(|a, b| {
-        let key = |p: &CurvePath| {
-            p.path
-                .elements()
-                .first()
-                .and_then(|e| e.end_point())
-                .unwrap_or(Point::ZERO)
-        };
-        let (ka, kb) = (key(a), key(b));
-        ka.y.total_cmp(&kb.y).then(ka.x.total_cmp(&kb.x))
-    });
-    paths
+impl Stopwatch {
+    fn start() -> Self {
+        Self {
+            clock: Instant::now(),
+        }
+    }
+
+    /// Records the time since the last lap as the time of `stage`.
+    fn lap(&mut self, report: &mut TraceReport, stage: &'static str) {
+        let now = Instant::now();
+        report.timings.push((stage, now - self.clock));
+        self.clock = now;
+    }
 }
 
-/// Reads, decodes and traces one image file; the error is a one-line message for the user
-/// (without the file name).
-pub fn trace_file(path: &Path, options: &TraceOptions) -> Result<Traced, String> {
-    let bytes = std::fs::read(path).map_err(|error| describe_io(&error))?;
-    let image = decode_image(&bytes).map_err(|error| error.to_string())?;
+/// What the raster stages leave for the vector ones.
+struct Raster {
+    /// The gray image, kept only for [`TraceOptions::keep_stages`].
+    gray: Option<GrayImage>,
+    /// The image size in pixels.
+    width: f64,
+    height: f64,
+    /// Ink after thresholding and cleaning.
+    mask: Bitmap,
+    /// The 1-px skeleton of the mask.
+    skeleton: Bitmap,
+    /// The measured pen width in pixels.
+    stroke_width: f64,
+}
+
+/// Gray → binarize → clean → thin. Fails when there is no ink to trace.
+fn raster_stages(
+    image: &DynamicImage,
+    options: &TraceOptions,
+    report: &mut TraceReport,
+    watch: &mut Stopwatch,
+) -> Result<Raster, TraceError> {
+    // An 8-bit gray image is used as it is: copying it would cost a full image of memory.
+    let gray: Cow<'_, GrayImage> = match image {
+        DynamicImage::ImageLuma8(gray) => Cow::Borrowed(gray),
+        other => Cow::Owned(to_gray(other)),
+    };
+    watch.lap(report, "gray");
+    let binarized = binarize(&gray, &options.binarize);
+    let (width, height) = (f64::from(gray.width()), f64::from(gray.height()));
+    // Only --debug needs the gray image after thresholding; free it before the later stages.
+    let gray = options.keep_stages.then(|| gray.into_owned());
+    report.threshold = Some(binarized.method_used);
+    let mut mask = binarized.mask;
+    watch.lap(report, "binarize");
+    let stroke_width = estimate_stroke_width(&mask);
+    if stroke_width <= 0.0 {
+        return Err(TraceError::NoInk);
+    }
+    report.cleaned = clean(&mut mask, stroke_width);
+    report.stroke_width = stroke_width;
+    watch.lap(report, "clean");
+    if mask.count_ink() == 0 {
+        return Err(TraceError::NoInk);
+    }
+    let skeleton = thin(&mask);
+    watch.lap(report, "thin");
+    Ok(Raster {
+        gray,
+        width,
+        height,
+        mask,
+        skeleton,
+        stroke_width,
+    })
+}
+
+/// Why an image file could not be traced. Its text is a one-line message for a user, without
+/// the file name.
+#[derive(Debug, thiserror::Error)]
+pub enum TraceFileError {
+    /// The file could not be read.
+    #[error("{}", describe_io(.0))]
+    Read(#[source] io::Error),
+    /// The bytes are not an image this crate decodes.
+    #[error(transparent)]
+    Decode(#[from] DecodeError),
+    /// The image decoded but could not be traced (a blank page).
+    #[error(transparent)]
+    Trace(#[from] TraceError),
+}
+
+/// Reads, decodes and traces one image file: [`trace()`] on the file's image. The format is
+/// recognised from the content, not the file name.
+///
+/// # Examples
+///
+/// ```
+/// use std::path::Path;
+///
+/// use crawltrace::{to_svg, trace_file, TraceFileError, TraceOptions};
+///
+/// let traced = trace_file(Path::new("samples/face-clean.png"), &TraceOptions::default())?;
+/// assert!(traced.drawing.paths.iter().any(|path| path.closed));
+/// let svg = to_svg(&traced.drawing);
+/// assert!(svg.starts_with("<svg"));
+///
+/// let missing = trace_file(Path::new("no-such-drawing.png"), &TraceOptions::default());
+/// assert!(matches!(missing, Err(TraceFileError::Read(_))));
+/// # Ok::<(), TraceFileError>(())
+/// ```
+///
+/// # Errors
+///
+/// [`TraceFileError::Read`] when the file cannot be read, [`TraceFileError::Decode`] when it is
+/// not an image this crate reads, [`TraceFileError::Trace`] when the image has no ink.
+pub fn trace_file(path: &Path, options: &TraceOptions) -> Result<Traced, TraceFileError> {
+    let bytes = std::fs::read(path).map_err(TraceFileError::Read)?;
+    let image = decode_image(&bytes)?;
     drop(bytes);
     // The trace starts by reducing the image to 8-bit gray; doing it here instead lets the
     // colour pixels (3 to 16 bytes each) go before the trace, not after it. Same result.
@@ -264,18 +311,5 @@ pub fn trace_file(path: &Path, options: &TraceOptions) -> Result<Traced, String>
         gray @ DynamicImage::ImageLuma8(_) => gray,
         other => DynamicImage::ImageLuma8(to_gray(&other)),
     };
-    trace(&image, options).map_err(|error| error.to_string())
-}
-
-/// Traces one image file into an SVG document: the per-file work of `crawltrace trace` on a
-/// folder, for [`crate::batch::run_batch`]. Public so that benchmarks and other front ends run
-/// exactly what the command runs.
-pub fn trace_file_to_svg(path: &Path, options: &TraceOptions) -> Result<FileResult, String> {
-    let traced = trace_file(path, options)?;
-    let paths = &traced.drawing.paths;
-    Ok(FileResult {
-        svg: to_svg(&traced.drawing).into_bytes(),
-        curves: paths.len(),
-        closed_curves: paths.iter().filter(|path| path.closed).count(),
-    })
+    Ok(trace(&image, options)?)
 }

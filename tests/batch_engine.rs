@@ -8,8 +8,8 @@ use std::sync::{mpsc, Mutex};
 use std::time::{Duration, SystemTime};
 
 use crawltrace::batch::{
-    discover_inputs, run_batch, BatchError, BatchOptions, BatchSummary, FileResult, FileStatus,
-    Shard,
+    discover_inputs, run_batch, BatchError, BatchOptions, BatchSummary, FileError, FileResult,
+    FileStatus, Shard, Unreadable,
 };
 use tempfile::TempDir;
 
@@ -72,14 +72,14 @@ fn recursive() -> BatchOptions {
     }
 }
 
-fn run(inputs: &[&Path], out: &Path, options: &BatchOptions) -> BatchSummary {
+fn run(inputs: &[&Path], out: &Path, options: &BatchOptions) -> BatchSummary<String> {
     let inputs: Vec<PathBuf> = inputs.iter().map(|path| path.to_path_buf()).collect();
     let discovery = discover_inputs(&inputs, options).unwrap();
     run_batch(&discovery, out, options, fake_processor).unwrap()
 }
 
 /// The relative paths of the outcomes with the given status, in outcome order.
-fn with_status(summary: &BatchSummary, wanted: &str) -> Vec<String> {
+fn with_status(summary: &BatchSummary<String>, wanted: &str) -> Vec<String> {
     summary
         .outcomes
         .iter()
@@ -123,7 +123,7 @@ fn nested_folders_are_mirrored() {
         fake_svg("two")
     );
     assert_eq!((summary.done, summary.skipped, summary.failed), (3, 0, 0));
-    assert_eq!(summary.exit_code(), 0);
+    assert_eq!(summary.failed, 0);
 }
 
 #[test]
@@ -196,7 +196,7 @@ fn files_without_an_image_extension_are_counted_and_left_alone() {
     assert_eq!(files_under(out.path()), ["a.svg"]);
     assert_eq!(summary.not_images, 3);
     assert_eq!(summary.outcomes.len(), 1);
-    assert_eq!(summary.exit_code(), 0);
+    assert_eq!(summary.failed, 0);
 }
 
 #[test]
@@ -221,12 +221,16 @@ fn a_failing_file_is_reported_and_the_others_are_still_written() {
 
     assert_eq!(files_under(out.path()), ["a.svg", "c.svg"]);
     assert_eq!((summary.done, summary.skipped, summary.failed), (2, 0, 1));
-    assert_eq!(summary.exit_code(), 1);
+    assert!(summary.failed > 0);
     assert_eq!(with_status(&summary, "failed"), ["b.png"]);
-    let FileStatus::Failed { message, .. } = &summary.outcomes[1].status else {
+    let FileStatus::Failed {
+        error: FileError::Process(message),
+        ..
+    } = &summary.outcomes[1].status
+    else {
         panic!("{:?}", summary.outcomes[1]);
     };
-    assert_eq!(message, "bad drawing");
+    assert_eq!(message, "bad drawing", "the processor's own error is kept");
 }
 
 #[test]
@@ -243,11 +247,15 @@ fn a_panicking_processor_fails_one_file_only() {
     .unwrap();
 
     assert_eq!(files_under(out.path()), ["b.svg"]);
-    let FileStatus::Failed { message, .. } = &summary.outcomes[0].status else {
+    let FileStatus::Failed {
+        error: error @ FileError::Panic(_),
+        ..
+    } = &summary.outcomes[0].status
+    else {
         panic!("{:?}", summary.outcomes[0]);
     };
-    assert_eq!(message, "internal error: index out of bounds");
-    assert_eq!(summary.exit_code(), 1);
+    assert_eq!(error.to_string(), "internal error: index out of bounds");
+    assert!(summary.failed > 0);
 }
 
 #[test]
@@ -258,9 +266,14 @@ fn an_output_subfolder_blocked_by_a_file_gives_per_file_errors() {
 
     assert_eq!(with_status(&summary, "failed"), ["a/one.png"]);
     assert_eq!(with_status(&summary, "done"), ["b/two.png"]);
-    let FileStatus::Failed { message, .. } = &summary.outcomes[0].status else {
+    let FileStatus::Failed {
+        error: error @ FileError::CreateFolder { .. },
+        ..
+    } = &summary.outcomes[0].status
+    else {
         panic!("{:?}", summary.outcomes[0]);
     };
+    let message = error.to_string();
     assert!(message.starts_with("cannot create the folder"), "{message}");
 }
 
@@ -274,9 +287,14 @@ fn a_folder_in_place_of_an_output_is_not_up_to_date() {
 
     assert_eq!(with_status(&summary, "failed"), ["a.png"]);
     assert_eq!(with_status(&summary, "done"), ["b.png"]);
-    let FileStatus::Failed { message, .. } = &summary.outcomes[0].status else {
+    let FileStatus::Failed {
+        error: error @ FileError::Write { .. },
+        ..
+    } = &summary.outcomes[0].status
+    else {
         panic!("{:?}", summary.outcomes[0]);
     };
+    let message = error.to_string();
     assert!(message.starts_with("cannot write"), "{message}");
     assert!(out.path().join("a.svg").is_dir());
 }
@@ -298,11 +316,12 @@ fn a_read_only_output_folder_gives_per_file_errors() {
     fs::set_permissions(out.path(), fs::Permissions::from_mode(0o755)).unwrap();
 
     assert_eq!(with_status(&summary, "failed"), ["a.png", "b.png"]);
-    let FileStatus::Failed { message, .. } = &summary.outcomes[0].status else {
+    let FileStatus::Failed { error, .. } = &summary.outcomes[0].status else {
         panic!("{:?}", summary.outcomes[0]);
     };
+    let message = error.to_string();
     assert!(message.ends_with("permission denied"), "{message}");
-    assert_eq!(summary.exit_code(), 1);
+    assert!(summary.failed > 0);
 }
 
 #[test]
@@ -314,7 +333,7 @@ fn a_second_run_skips_everything_and_force_redoes_it() {
 
     let second = run(&[input.path()], out.path(), &recursive());
     assert_eq!((second.done, second.skipped, second.failed), (0, 2, 0));
-    assert_eq!(second.exit_code(), 0);
+    assert_eq!(second.failed, 0);
 
     // Mark the outputs so that a rewrite shows.
     for name in ["a.svg", "sub/b.svg"] {
@@ -444,9 +463,14 @@ fn an_output_that_is_an_input_is_refused() {
     );
     assert_eq!(with_status(&summary, "failed"), ["drawing.svg"]);
     assert_eq!(with_status(&summary, "done"), ["a.png"]);
-    let FileStatus::Failed { message, .. } = &summary.outcomes[1].status else {
+    let FileStatus::Failed {
+        error: error @ FileError::OverwritesInput { .. },
+        ..
+    } = &summary.outcomes[1].status
+    else {
         panic!("{:?}", summary.outcomes[1]);
     };
+    let message = error.to_string();
     assert!(
         message.starts_with("refusing to overwrite an input"),
         "{message}"
@@ -685,7 +709,7 @@ fn an_empty_folder_is_an_empty_batch() {
     let out = tempfile::tempdir().unwrap();
     let summary = run(&[input.path()], out.path(), &quiet());
     assert!(summary.outcomes.is_empty());
-    assert_eq!(summary.exit_code(), 0);
+    assert_eq!(summary.failed, 0);
 }
 
 #[cfg(unix)]
@@ -705,7 +729,7 @@ fn a_symbolic_link_loop_does_not_hang() {
         [PathBuf::from("a.png"), Path::new("sub").join("b.png")]
     );
     assert_eq!(discovery.warnings.len(), 1, "{:?}", discovery.warnings);
-    assert!(discovery.warnings[0].contains("loop"));
+    assert!(discovery.warnings[0].to_string().contains("loop"));
 }
 
 #[cfg(unix)]
@@ -719,12 +743,19 @@ fn a_broken_link_to_an_image_is_a_failure() {
 
     assert_eq!(with_status(&summary, "done"), ["a.png"]);
     assert_eq!(with_status(&summary, "failed"), ["ghost.png"]);
-    assert_eq!(
-        summary.outcomes[1].status,
-        FileStatus::Failed {
-            message: "broken symbolic link".to_string(),
-            seconds: None
-        }
+    assert!(
+        matches!(
+            summary.outcomes[1].status,
+            FileStatus::Failed {
+                error: FileError::Unreadable(Unreadable::BrokenLink),
+                seconds: None
+            }
+        ),
+        "{:?}",
+        summary.outcomes[1].status
     );
+    if let FileStatus::Failed { error, .. } = &summary.outcomes[1].status {
+        assert_eq!(error.to_string(), "broken symbolic link");
+    }
     assert_eq!(summary.not_images, 1);
 }

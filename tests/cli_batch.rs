@@ -107,7 +107,7 @@ impl Drawing {
             <g fill="none" stroke="black" stroke-width="3" stroke-linecap="round" stroke-dasharray="22 7">
             {shapes}</g></svg>"##
         );
-        let rgba = crawltrace::render::render_svg(&svg, 1.0).expect("test SVG renders");
+        let rgba = crawltrace::render_svg(&svg, 1.0).expect("test SVG renders");
         DynamicImage::ImageRgba8(rgba).to_luma8()
     }
 }

@@ -42,7 +42,7 @@ fn sketch(width: u32, height: u32) -> GrayImage {
           <path d="M20 160 C60 130 100 190 140 160 S 200 130 220 160"/>
         </g></svg>"##
     );
-    let rgba = crawltrace::render::render_svg(&svg, 1.0).expect("test SVG renders");
+    let rgba = crawltrace::render_svg(&svg, 1.0).expect("test SVG renders");
     DynamicImage::ImageRgba8(rgba).to_luma8()
 }
 

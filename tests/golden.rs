@@ -6,7 +6,8 @@ mod support;
 
 use std::path::{Path, PathBuf};
 
-use crawltrace::{decode, render, svg, trace, TraceOptions};
+use crawltrace::stages::decode;
+use crawltrace::{render_svg, to_svg, trace, TraceOptions};
 
 /// A channel may differ by this much and still count as equal: anti-aliasing of the same path can
 /// shift by a few levels between platforms' float rounding.
@@ -30,7 +31,7 @@ fn traced_samples_render_like_their_references() {
         let stem = image.file_stem().unwrap().to_string_lossy().into_owned();
         let picture = decode::decode_image(&std::fs::read(&image).unwrap()).unwrap();
         let traced = trace(&picture, &TraceOptions::default()).unwrap();
-        let actual = render::render_svg(&svg::to_svg(&traced.drawing), 1.0).unwrap();
+        let actual = render_svg(&to_svg(&traced.drawing), 1.0).unwrap();
         let reference = golden.join(format!("{stem}.png"));
         if bless {
             std::fs::create_dir_all(&golden).unwrap();

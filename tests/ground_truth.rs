@@ -6,7 +6,8 @@ mod support;
 
 use std::path::{Path, PathBuf};
 
-use crawltrace::{decode, svg, trace, TraceOptions};
+use crawltrace::stages::decode;
+use crawltrace::{to_svg, trace, TraceOptions};
 
 /// Samples that are known to fail today, with the reason. The test fails when one of them starts
 /// to pass too, so that this list and the README's table stay true.
@@ -36,7 +37,7 @@ fn traced_svg(image: &Path) -> String {
     let picture = decode::decode_image(&bytes).unwrap();
     let traced = trace(&picture, &TraceOptions::default())
         .unwrap_or_else(|e| panic!("{}: {e}", image.display()));
-    svg::to_svg(&traced.drawing)
+    to_svg(&traced.drawing)
 }
 
 #[test]

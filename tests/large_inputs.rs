@@ -6,8 +6,7 @@
 use std::collections::BTreeSet;
 use std::f64::consts::TAU;
 
-use crawltrace::reconstruct::{reconstruct, Reconstruction};
-use crawltrace::Point;
+use crawltrace::{reconstruct, Point, Reconstruction};
 
 const COUNT: usize = 100_000;
 

@@ -1,5 +1,5 @@
 //! Invariants of the crawls (the paper's, `crawltrace::reconstruct`, and the robust one,
-//! `crawltrace::robust_crawl`) on seeded random point sets, and the paper's ε-sampling theorem:
+//! `crawltrace::reconstruct_robust`) on seeded random point sets, and the paper's ε-sampling theorem:
 //! densely sampled smooth closed curves come back exactly.
 //!
 //! Every input is made by a tiny SplitMix64 generator from a seed, so a failure names the seed that
@@ -10,17 +10,14 @@
 use std::collections::{BTreeMap, BTreeSet};
 use std::f64::consts::TAU;
 
-use crawltrace::reconstruct::{reconstruct, NeighbourGraph, ReconstructError, Reconstruction};
-use crawltrace::{robust_crawl, Point};
+use crawltrace::stages::crawl::neighbours::NeighbourGraph;
+use crawltrace::{reconstruct, reconstruct_robust, Point, ReconstructError, Reconstruction};
 
 /// A reconstruction method: the paper's crawl or the robust one.
 type Method = fn(&[Point]) -> Result<Reconstruction, ReconstructError>;
 
 /// Both methods, named for failure messages. Every property below holds for both.
-const METHODS: [(&str, Method); 2] = [
-    ("paper", reconstruct),
-    ("robust", robust_crawl::reconstruct),
-];
+const METHODS: [(&str, Method); 2] = [("paper", reconstruct), ("robust", reconstruct_robust)];
 
 /// SplitMix64 (Steele, Lea & Flood 2014): tiny, fast, and good enough to draw test shapes.
 struct SplitMix64(u64);
@@ -615,7 +612,7 @@ fn robust_closes_a_circle_across_a_gap_of_two_and_a_half_spacings() {
     let count = 40;
     for (gap_in_steps, closes) in [(1.8, true), (2.2, true), (2.4, true), (2.7, false)] {
         let points = circle_arc(count, TAU / (count as f64 - 1.0 + gap_in_steps));
-        let result = robust_crawl::reconstruct(&points).unwrap();
+        let result = reconstruct_robust(&points).unwrap();
         assert_eq!(result.curves.len(), 1, "gap {gap_in_steps}");
         assert_eq!(result.curves[0].closed, closes, "gap {gap_in_steps}");
         assert_eq!(result.curves[0].indices.len(), count, "gap {gap_in_steps}");
@@ -633,7 +630,7 @@ fn robust_keeps_a_circle_with_a_dense_cluster_whole() {
         let angle = k * step / 8.0;
         points.push(Point::new(10.0 * angle.cos(), 10.0 * angle.sin()));
     }
-    let result = robust_crawl::reconstruct(&points).unwrap();
+    let result = reconstruct_robust(&points).unwrap();
     let shapes: Vec<(bool, usize)> = result
         .curves
         .iter()

@@ -1,12 +1,12 @@
-//! The robust crawl (`crawltrace::robust_crawl`) on the cases of issue 10, each a seeded point set
-//! at spacing 1 whose exact edge set and outliers are known (`tests/point_sets/`): stray points,
-//! acute sectors, open ends near other curves, thin parts, and curves sampled by local feature
-//! size. Every set is turned, scaled by a power of two, shifted and shuffled before it is
+//! The robust crawl (`crawltrace::reconstruct_robust`) on the cases of issue 10, each a seeded
+//! point set at spacing 1 whose exact edge set and outliers are known (`tests/point_sets/`): stray
+//! points, acute sectors, open ends near other curves, thin parts, and curves sampled by local
+//! feature size. Every set is turned, scaled by a power of two, shifted and shuffled before it is
 //! reconstructed, and every test expects exactly the true edges and outliers.
 
 mod point_sets;
 
-use crawltrace::robust_crawl::reconstruct;
+use crawltrace::reconstruct_robust as reconstruct;
 use point_sets::families::{
     circle_and_arc, circle_with_strays, feature_size_closed, feature_size_open,
     line_with_strays_beyond, parallel_lines, sector_samples, slot, stray_pair_outside_circle,

@@ -6,9 +6,7 @@ mod support;
 
 use std::path::{Path, PathBuf};
 
-use crawltrace::render::render_svg;
-use crawltrace::svg::{to_svg, CurvePath, Drawing};
-use crawltrace::Point;
+use crawltrace::{render_svg, to_svg, CurvePath, Drawing, Point};
 use image::{DynamicImage, GrayImage};
 use support::{load_curves, load_stroke_width, Polyline};
 

@@ -12,7 +12,7 @@ use std::fmt::Write as _;
 use std::io::Cursor;
 use std::path::{Path, PathBuf};
 
-use crawltrace::bitmap::Bitmap;
+use crawltrace::stages::bitmap::Bitmap;
 use image::codecs::jpeg::JpegEncoder;
 use image::{GrayImage, ImageFormat, Rgb, RgbImage};
 
@@ -110,7 +110,7 @@ pub fn generate_page() -> GrayImage {
         }
     }
     svg.push_str("</g></svg>");
-    let rgba = crawltrace::render::render_svg(&svg, 1.0).expect("the generated SVG renders");
+    let rgba = crawltrace::render_svg(&svg, 1.0).expect("the generated SVG renders");
     image::DynamicImage::ImageRgba8(rgba).to_luma8()
 }
 

@@ -13,8 +13,8 @@ pub mod geometry;
 
 use std::collections::BTreeSet;
 
-use crawltrace::reconstruct::Reconstruction;
 use crawltrace::Point;
+use crawltrace::Reconstruction;
 
 use geometry::Xy;
 

@@ -1,0 +1,224 @@
+//! Polylines: ordered chains of points, open or closed, with their length, Ramer–Douglas–Peucker
+//! simplification (U. Ramer, Computer Graphics and Image Processing 1(3), 1972; D. Douglas and
+//! T. Peucker, The Canadian Cartographer 10(2), 1973) and resampling at a spacing.
+
+use kurbo::Point;
+
+/// An ordered chain of points; a closed one joins its last point back to its first, which it does
+/// not repeat.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Polyline {
+    /// The points in order.
+    pub points: Vec<Point>,
+    /// Whether the last point joins the first.
+    pub closed: bool,
+}
+
+impl Polyline {
+    /// A polyline through `points`, closed or open.
+    pub fn new(points: Vec<Point>, closed: bool) -> Self {
+        Self { points, closed }
+    }
+
+    /// The length, the closing segment included when closed.
+    pub fn length(&self) -> f64 {
+        polyline_length(&self.points, self.closed)
+    }
+
+    /// Ramer–Douglas–Peucker simplification: a subset of the points (always including both ends
+    /// of an open polyline) within `tolerance` of the original.
+    pub fn simplify(&self, tolerance: f64) -> Self {
+        Self::new(
+            simplify_polyline(&self.points, self.closed, tolerance),
+            self.closed,
+        )
+    }
+
+    /// The polyline with evenly spaced points inserted into every segment longer than
+    /// `spacing`, so that no two consecutive points are farther apart.
+    pub fn resample(&self, spacing: f64) -> Self {
+        Self::new(subdivide(&self.points, self.closed, spacing), self.closed)
+    }
+}
+
+/// The length of an ordered chain of points, including the closing segment if `closed`
+/// ([`Polyline::length`] for points held elsewhere).
+pub fn polyline_length(points: &[Point], closed: bool) -> f64 {
+    let open: f64 = points.windows(2).map(|w| w[0].distance(w[1])).sum();
+    match (closed, points.first(), points.last()) {
+        (true, Some(&first), Some(&last)) => open + first.distance(last),
+        _ => open,
+    }
+}
+
+/// [`Polyline::simplify`] on points held elsewhere.
+pub fn simplify_polyline(points: &[Point], closed: bool, tolerance: f64) -> Vec<Point> {
+    if points.len() <= 2 {
+        return points.to_vec();
+    }
+    let kept = simplification_mask(points, closed, tolerance);
+    points
+        .iter()
+        .zip(&kept)
+        .filter(|(_, &k)| k)
+        .map(|(&p, _)| p)
+        .collect()
+}
+
+/// Which points Ramer–Douglas–Peucker keeps; a closed chain is split at the point farthest
+/// from its first point and both halves are simplified.
+fn simplification_mask(points: &[Point], closed: bool, tolerance: f64) -> Vec<bool> {
+    if closed {
+        // Split the loop at the point farthest from the first one, and simplify both halves.
+        let far = (1..points.len())
+            .max_by(|&a, &b| {
+                points[0]
+                    .distance_squared(points[a])
+                    .total_cmp(&points[0].distance_squared(points[b]))
+                    .then(b.cmp(&a))
+            })
+            .expect("more than two points");
+        let mut keep = vec![false; points.len()];
+        keep[0] = true;
+        keep[far] = true;
+        douglas_peucker(points, 0, far, tolerance, &mut keep);
+        let mut wrapped: Vec<Point> = points[far..].to_vec();
+        wrapped.push(points[0]);
+        let mut keep_wrapped = vec![false; wrapped.len()];
+        douglas_peucker(&wrapped, 0, wrapped.len() - 1, tolerance, &mut keep_wrapped);
+        for (k, &kept) in keep_wrapped.iter().enumerate().take(wrapped.len() - 1) {
+            keep[far + k] |= kept;
+        }
+        keep
+    } else {
+        let mut keep = vec![false; points.len()];
+        keep[0] = true;
+        keep[points.len() - 1] = true;
+        douglas_peucker(points, 0, points.len() - 1, tolerance, &mut keep);
+        keep
+    }
+}
+
+/// Marks the points of `points[first..=last]` that Ramer–Douglas–Peucker keeps at `tolerance`.
+fn douglas_peucker(points: &[Point], first: usize, last: usize, tolerance: f64, keep: &mut [bool]) {
+    // An explicit stack: skeleton branches can be thousands of pixels long.
+    let mut stack = vec![(first, last)];
+    while let Some((a, b)) = stack.pop() {
+        if b <= a + 1 {
+            continue;
+        }
+        let line = kurbo::Line::new(points[a], points[b]);
+        let (mut farthest, mut distance) = (a, -1.0);
+        for (k, &p) in points.iter().enumerate().take(b).skip(a + 1) {
+            let d = distance_to_segment(p, line);
+            if d > distance {
+                farthest = k;
+                distance = d;
+            }
+        }
+        if distance > tolerance {
+            keep[farthest] = true;
+            stack.push((a, farthest));
+            stack.push((farthest, b));
+        }
+    }
+}
+
+fn distance_to_segment(p: Point, line: kurbo::Line) -> f64 {
+    use kurbo::ParamCurveNearest;
+    line.nearest(p, 1e-9).distance_sq.sqrt()
+}
+
+/// Inserts evenly spaced points into every segment longer than `spacing`.
+fn subdivide(vertices: &[Point], closed: bool, spacing: f64) -> Vec<Point> {
+    let mut samples = Vec::with_capacity(vertices.len());
+    let segment_count = if closed {
+        vertices.len()
+    } else {
+        vertices.len().saturating_sub(1)
+    };
+    if vertices.len() == 1 || segment_count == 0 {
+        return vertices.to_vec();
+    }
+    for k in 0..segment_count {
+        let (a, b) = (vertices[k], vertices[(k + 1) % vertices.len()]);
+        samples.push(a);
+        let pieces = (a.distance(b) / spacing).ceil().max(1.0) as usize;
+        for step in 1..pieces {
+            samples.push(a.lerp(b, step as f64 / pieces as f64));
+        }
+    }
+    if !closed {
+        samples.push(vertices[vertices.len() - 1]);
+    }
+    samples
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Simplified within `tolerance`, then resampled every `spacing`: how strokes are sampled.
+    fn sample_polyline(points: &[Point], closed: bool, spacing: f64, tolerance: f64) -> Vec<Point> {
+        Polyline::new(points.to_vec(), closed)
+            .simplify(tolerance)
+            .resample(spacing)
+            .points
+    }
+
+    #[test]
+    fn a_corner_and_both_ends_are_kept() {
+        // An L of pixel centres: 10 right, then 10 down.
+        let mut points: Vec<Point> = (0..=10).map(|x| Point::new(x as f64, 0.0)).collect();
+        points.extend((1..=10).map(|y| Point::new(10.0, y as f64)));
+        let samples = sample_polyline(&points, false, 3.0, 0.7);
+        assert_eq!(samples.first(), Some(&Point::new(0.0, 0.0)));
+        assert_eq!(samples.last(), Some(&Point::new(10.0, 10.0)));
+        assert!(samples.contains(&Point::new(10.0, 0.0)), "{samples:?}");
+        for pair in samples.windows(2) {
+            let d = pair[0].distance(pair[1]);
+            assert!(d <= 3.0 + 1e-9 && d > 1.0, "{samples:?}");
+        }
+    }
+
+    #[test]
+    fn a_loop_is_sampled_all_round_without_repeating_its_start() {
+        let points: Vec<Point> = (0..64)
+            .map(|i| {
+                let a = std::f64::consts::TAU * i as f64 / 64.0;
+                Point::new(20.0 * a.cos(), 20.0 * a.sin())
+            })
+            .collect();
+        let samples = sample_polyline(&points, true, 4.0, 0.5);
+        assert_ne!(samples.first(), samples.last());
+        let perimeter: f64 = (0..samples.len())
+            .map(|k| samples[k].distance(samples[(k + 1) % samples.len()]))
+            .sum();
+        assert!(
+            (perimeter - std::f64::consts::TAU * 20.0).abs() < 2.0,
+            "{perimeter}"
+        );
+        for k in 0..samples.len() {
+            let d = samples[k].distance(samples[(k + 1) % samples.len()]);
+            assert!(d <= 4.0 + 1e-9, "gap {d} at {k}");
+        }
+    }
+
+    #[test]
+    fn wobble_below_the_tolerance_is_removed() {
+        let points: Vec<Point> = (0..40)
+            .map(|x| Point::new(x as f64, if x % 2 == 0 { 0.0 } else { 0.5 }))
+            .collect();
+        let samples = sample_polyline(&points, false, 100.0, 0.7);
+        assert_eq!(samples.len(), 2, "{samples:?}");
+    }
+
+    #[test]
+    fn tiny_inputs_pass_through() {
+        assert!(sample_polyline(&[], false, 3.0, 0.7).is_empty());
+        let dot = [Point::new(1.0, 1.0)];
+        assert_eq!(sample_polyline(&dot, false, 3.0, 0.7), dot.to_vec());
+        let pair = [Point::new(0.0, 0.0), Point::new(7.0, 0.0)];
+        assert_eq!(sample_polyline(&pair, false, 3.0, 0.7).len(), 4);
+    }
+}

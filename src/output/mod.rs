@@ -1,0 +1,7 @@
+//! The output stages: polylines → paths ([`fit`]) → SVG text ([`svg`]); SVG → pixels
+//! ([`render`]); and the pictures of every stage for `--debug` ([`debug`]).
+
+pub mod debug;
+pub mod fit;
+pub mod render;
+pub mod svg;

@@ -1,0 +1,247 @@
+//! Writes a [`Drawing`] as SVG text, following the conventions of `docs/design.md` ("SVG
+//! conventions"): viewBox in pixels, one `<path>` per curve, `Z` on closed curves, at most two
+//! decimals, byte-identical output for identical input.
+
+use std::fmt::Write as _;
+
+use kurbo::{BezPath, PathEl, Point};
+
+pub use super::fit::CurvePath;
+
+/// Vector curves on a canvas, ready to be written as SVG.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Drawing {
+    /// Canvas width in pixels.
+    pub width: f64,
+    /// Canvas height in pixels.
+    pub height: f64,
+    /// One entry per curve, in a stable order.
+    pub paths: Vec<CurvePath>,
+    /// Stroke width in pixels.
+    pub stroke_width: f64,
+    /// Stroke colour, any SVG colour (`#000000`, `black`, …).
+    pub color: String,
+    /// Points drawn as small red dots (outliers of a point set); empty for traced images.
+    pub dots: Vec<Point>,
+    /// Points drawn as small blue dots over the curves (every input point of a point set, with
+    /// `points --show-points`); empty otherwise.
+    pub points: Vec<Point>,
+}
+
+/// Coordinates and sizes are written with at most this many decimals: a hundredth of a pixel is
+/// below what any renderer shows, and shorter numbers keep the files small.
+const DECIMALS: usize = 2;
+
+/// The thinnest stroke and the smallest dot written: what two decimals can still show (a width
+/// of 0 would hide the paths).
+const MIN_SIZE: f64 = 0.01;
+
+/// Input points (`points --show-points`) are dots of this radius, in stroke widths: visible over
+/// the curve they lie on.
+const POINT_RADIUS_IN_STROKE_WIDTHS: f64 = 1.2;
+/// Their colour: a blue that stands out on the black curves.
+const POINT_COLOUR: &str = "#1e5adc";
+
+/// Outliers of a point set are dots of this radius, in stroke widths: a little larger than the
+/// input points, so that they show over them.
+const OUTLIER_RADIUS_IN_STROKE_WIDTHS: f64 = 1.5;
+/// Their colour: red, for points that belong to no curve.
+const OUTLIER_COLOUR: &str = "#d33";
+
+/// Formats a number with at most two decimals, no trailing zeros and no `-0`.
+pub fn format_number(value: f64) -> String {
+    let mut text = format!("{value:.DECIMALS$}");
+    if text.contains('.') {
+        let trimmed = text.trim_end_matches('0').trim_end_matches('.').len();
+        text.truncate(trimmed);
+    }
+    if text == "-0" {
+        text = "0".to_string();
+    }
+    text
+}
+
+/// The `d` attribute of a path.
+pub fn path_data(path: &BezPath) -> String {
+    let mut d = String::new();
+    let point = |d: &mut String, p: Point| {
+        let _ = write!(d, "{} {}", format_number(p.x), format_number(p.y));
+    };
+    for element in path.elements() {
+        if !d.is_empty() {
+            d.push(' ');
+        }
+        match *element {
+            PathEl::MoveTo(p) => {
+                d.push('M');
+                point(&mut d, p);
+            }
+            PathEl::LineTo(p) => {
+                d.push('L');
+                point(&mut d, p);
+            }
+            PathEl::QuadTo(a, p) => {
+                d.push('Q');
+                point(&mut d, a);
+                d.push(' ');
+                point(&mut d, p);
+            }
+            PathEl::CurveTo(a, b, p) => {
+                d.push('C');
+                point(&mut d, a);
+                d.push(' ');
+                point(&mut d, b);
+                d.push(' ');
+                point(&mut d, p);
+            }
+            PathEl::ClosePath => d.push('Z'),
+        }
+    }
+    d
+}
+
+/// Writes `drawing` as a standalone SVG document, following the conventions of `docs/design.md`
+/// ("SVG conventions"): the canvas in pixels, one `<path>` per curve, `Z` on closed ones,
+/// coordinates with at most two decimals; the same drawing always gives the same bytes.
+///
+/// # Examples
+///
+/// ```
+/// use crawltrace::{to_svg, CurvePath, Drawing, Point};
+///
+/// let triangle = [Point::new(10.5, 10.5), Point::new(50.5, 10.5), Point::new(30.5, 40.5)];
+/// let drawing = Drawing {
+///     width: 64.0,
+///     height: 48.0,
+///     paths: vec![CurvePath::polyline(&triangle, true)],
+///     stroke_width: 2.0,
+///     color: "black".into(),
+///     dots: Vec::new(),
+///     points: Vec::new(),
+/// };
+/// let svg = to_svg(&drawing);
+/// assert!(svg.contains(r#"viewBox="0 0 64 48""#));
+/// assert!(svg.contains(r#"<path d="M10.5 10.5 L50.5 10.5 L30.5 40.5 Z"/>"#));
+/// ```
+///
+/// # Errors
+///
+/// None: every drawing can be written (the text is built in memory).
+pub fn to_svg(drawing: &Drawing) -> String {
+    let width = format_number(drawing.width);
+    let height = format_number(drawing.height);
+    let mut svg = String::new();
+    let _ = writeln!(
+        svg,
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" viewBox="0 0 {width} {height}">"#
+    );
+    let _ = writeln!(
+        svg,
+        r#"<g fill="none" stroke="{}" stroke-width="{}" stroke-linecap="round" stroke-linejoin="round">"#,
+        escape_attribute(&drawing.color),
+        format_number(drawing.stroke_width.max(MIN_SIZE)),
+    );
+    for curve in &drawing.paths {
+        let _ = writeln!(svg, r#"<path d="{}"/>"#, path_data(&curve.path));
+    }
+    svg.push_str("</g>\n");
+    write_dots(
+        &mut svg,
+        &drawing.points,
+        POINT_COLOUR,
+        drawing.stroke_width * POINT_RADIUS_IN_STROKE_WIDTHS,
+    );
+    write_dots(
+        &mut svg,
+        &drawing.dots,
+        OUTLIER_COLOUR,
+        drawing.stroke_width * OUTLIER_RADIUS_IN_STROKE_WIDTHS,
+    );
+    svg.push_str("</svg>\n");
+    svg
+}
+
+/// A group of filled circles of `radius` at `centres`; nothing when there are none.
+fn write_dots(svg: &mut String, centres: &[Point], fill: &str, radius: f64) {
+    if centres.is_empty() {
+        return;
+    }
+    let radius = format_number(radius.max(MIN_SIZE));
+    let _ = writeln!(svg, r#"<g fill="{fill}">"#);
+    for centre in centres {
+        let _ = writeln!(
+            svg,
+            r#"<circle cx="{}" cy="{}" r="{radius}"/>"#,
+            format_number(centre.x),
+            format_number(centre.y)
+        );
+    }
+    svg.push_str("</g>\n");
+}
+
+fn escape_attribute(value: &str) -> String {
+    value
+        .replace('&', "&amp;")
+        .replace('"', "&quot;")
+        .replace('<', "&lt;")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_have_at_most_two_decimals_and_no_negative_zero() {
+        assert_eq!(format_number(1.0), "1");
+        assert_eq!(format_number(1.5), "1.5");
+        assert_eq!(format_number(1.239), "1.24");
+        assert_eq!(format_number(-0.001), "0");
+        assert_eq!(format_number(-2.10), "-2.1");
+        assert_eq!(format_number(100.0), "100");
+    }
+
+    #[test]
+    fn closed_polylines_end_with_z_and_open_ones_do_not() {
+        let square = [
+            Point::new(0.5, 0.5),
+            Point::new(10.5, 0.5),
+            Point::new(10.5, 10.5),
+        ];
+        let closed = CurvePath::polyline(&square, true);
+        assert_eq!(path_data(&closed.path), "M0.5 0.5 L10.5 0.5 L10.5 10.5 Z");
+        let open = CurvePath::polyline(&square, false);
+        assert_eq!(path_data(&open.path), "M0.5 0.5 L10.5 0.5 L10.5 10.5");
+    }
+
+    #[test]
+    fn document_has_the_canvas_as_view_box_and_one_path_per_curve() {
+        let drawing = Drawing {
+            width: 40.0,
+            height: 30.0,
+            paths: vec![
+                CurvePath::polyline(&[Point::new(1.0, 1.0), Point::new(5.0, 5.0)], false),
+                CurvePath::polyline(
+                    &[
+                        Point::new(1.0, 1.0),
+                        Point::new(5.0, 1.0),
+                        Point::new(5.0, 5.0),
+                    ],
+                    true,
+                ),
+            ],
+            stroke_width: 2.0,
+            color: "black".into(),
+            dots: vec![],
+            points: vec![],
+        };
+        let svg = to_svg(&drawing);
+        assert!(
+            svg.contains(r#"width="40" height="30" viewBox="0 0 40 30""#),
+            "{svg}"
+        );
+        assert_eq!(svg.matches("<path ").count(), 2);
+        assert_eq!(svg.matches('Z').count(), 1);
+        let tree = usvg::Tree::from_str(&svg, &usvg::Options::default()).expect("usvg parses it");
+        assert_eq!(tree.size().width(), 40.0);
+    }
+}

@@ -1,0 +1,307 @@
+//! The skeleton as a graph: branches of skeleton pixels between nodes (end points and
+//! junctions), traced from a 1-px skeleton in raster order.
+
+use std::collections::HashMap;
+
+use kurbo::Point;
+
+use crate::raster::bitmap::{Bitmap, NEIGHBOUR_OFFSETS};
+
+/// Branches of a skeleton between nodes (end points and junctions).
+#[derive(Debug, Default)]
+pub(super) struct SkeletonGraph {
+    pub(super) nodes: Vec<Node>,
+    pub(super) branches: Vec<Branch>,
+}
+
+#[derive(Debug)]
+pub(super) struct Node {
+    pub(super) position: Point,
+    /// The branch ends that meet here: (branch, whether it is the branch's start).
+    pub(super) ends: Vec<(usize, bool)>,
+    /// Set when pruning took away every branch of this node (it was the tip of a spur).
+    pub(super) pruned: bool,
+}
+
+#[derive(Debug)]
+pub(super) struct Branch {
+    /// From the start node's position to the end node's position; for loops, around the loop.
+    pub(super) points: Vec<Point>,
+    /// `None` for a loop with no node on it.
+    pub(super) nodes: Option<(usize, usize)>,
+    pub(super) removed: bool,
+}
+
+/// The label of pixels that lie on a branch (node pixels are labelled with their node).
+const PATH_PIXEL: usize = usize::MAX;
+
+/// Labels of the skeleton pixels traced so far, by pixel index (`y * width + x`): a node number
+/// or [`PATH_PIXEL`].
+type Labels = HashMap<usize, usize>;
+
+fn centre(x: usize, y: usize) -> Point {
+    Point::new(x as f64 + 0.5, y as f64 + 0.5)
+}
+
+/// The index of a pixel in the labels.
+fn pixel_index(skeleton: &Bitmap, (x, y): (usize, usize)) -> usize {
+    y * skeleton.width() + x
+}
+
+/// The ink pixels among the 8 neighbours of `(x, y)`, in [`NEIGHBOUR_OFFSETS`] order.
+fn neighbours_of(
+    skeleton: &Bitmap,
+    (x, y): (usize, usize),
+) -> impl Iterator<Item = (usize, usize)> + '_ {
+    NEIGHBOUR_OFFSETS.iter().filter_map(move |&(dx, dy)| {
+        let (nx, ny) = (x as isize + dx, y as isize + dy);
+        skeleton
+            .get_signed(nx, ny)
+            .then_some((nx as usize, ny as usize))
+    })
+}
+
+/// Pixels with a neighbour count other than two (ends and junctions) are node pixels.
+fn is_node_pixel(skeleton: &Bitmap, (x, y): (usize, usize)) -> bool {
+    skeleton.neighbourhood(x, y).count_ones() != 2
+}
+
+impl SkeletonGraph {
+    /// The graph of `skeleton`: its nodes, the branches between them, and the loops with no node.
+    pub(super) fn trace(skeleton: &Bitmap) -> Self {
+        let mut label = Labels::new();
+        let mut graph = SkeletonGraph::default();
+        let members_of_node = graph.find_nodes(skeleton, &mut label);
+        // Walk every branch leaving each node; a branch walked from its other end already has
+        // its first pixel labelled.
+        for (node, members) in members_of_node.iter().enumerate() {
+            for &pixel in members {
+                let starts: Vec<(usize, usize)> = neighbours_of(skeleton, pixel).collect();
+                for first in starts {
+                    if !label.contains_key(&pixel_index(skeleton, first)) {
+                        graph.walk_branch(skeleton, &mut label, node, pixel, first);
+                    }
+                }
+            }
+        }
+        graph.trace_loops_without_nodes(skeleton, &mut label);
+        graph
+    }
+
+    /// Makes a node of every cluster of adjacent node pixels (an 8-connected skeleton often has
+    /// two or three junction pixels side by side), at the cluster's centroid, in raster order of
+    /// the clusters' first pixels. Returns each node's pixels.
+    fn find_nodes(&mut self, skeleton: &Bitmap, label: &mut Labels) -> Vec<Vec<(usize, usize)>> {
+        let (width, height) = (skeleton.width(), skeleton.height());
+        let index = |pixel: (usize, usize)| pixel_index(skeleton, pixel);
+        let mut members_of_node: Vec<Vec<(usize, usize)>> = Vec::new();
+        let bytes = skeleton.as_bytes();
+        for y in 0..height {
+            let row = &bytes[y * width..(y + 1) * width];
+            for x in row
+                .iter()
+                .enumerate()
+                .filter(|(_, &b)| b != 0)
+                .map(|(x, _)| x)
+            {
+                if !is_node_pixel(skeleton, (x, y)) || label.contains_key(&index((x, y))) {
+                    continue;
+                }
+                let node = self.nodes.len();
+                let mut stack = vec![(x, y)];
+                let mut members = Vec::new();
+                label.insert(index((x, y)), node);
+                while let Some(pixel) = stack.pop() {
+                    members.push(pixel);
+                    for next in neighbours_of(skeleton, pixel) {
+                        if is_node_pixel(skeleton, next) && !label.contains_key(&index(next)) {
+                            label.insert(index(next), node);
+                            stack.push(next);
+                        }
+                    }
+                }
+                members.sort_unstable_by_key(|&(mx, my)| (my, mx));
+                let count = members.len() as f64;
+                let (sum_x, sum_y) = members.iter().fold((0.0, 0.0), |(sx, sy), &(mx, my)| {
+                    (sx + mx as f64 + 0.5, sy + my as f64 + 0.5)
+                });
+                self.nodes.push(Node {
+                    position: Point::new(sum_x / count, sum_y / count),
+                    ends: Vec::new(),
+                    pruned: false,
+                });
+                members_of_node.push(members);
+            }
+        }
+        members_of_node
+    }
+
+    /// What is left unlabelled after the branches are walked are loops with no node on them:
+    /// each becomes a branch without nodes.
+    fn trace_loops_without_nodes(&mut self, skeleton: &Bitmap, label: &mut Labels) {
+        let index = |pixel: (usize, usize)| pixel_index(skeleton, pixel);
+        for y in 0..skeleton.height() {
+            for x in 0..skeleton.width() {
+                if !skeleton.get(x, y) || label.contains_key(&index((x, y))) {
+                    continue;
+                }
+                let mut points = vec![centre(x, y)];
+                label.insert(index((x, y)), PATH_PIXEL);
+                let mut current = (x, y);
+                while let Some(next) =
+                    neighbours_of(skeleton, current).find(|&p| !label.contains_key(&index(p)))
+                {
+                    label.insert(index(next), PATH_PIXEL);
+                    points.push(centre(next.0, next.1));
+                    current = next;
+                }
+                self.branches.push(Branch {
+                    points,
+                    nodes: None,
+                    removed: false,
+                });
+            }
+        }
+    }
+
+    /// Follows the branch that leaves node pixel `from` (of `start_node`) through `first` until
+    /// it reaches a node pixel, labelling its pixels [`PATH_PIXEL`].
+    fn walk_branch(
+        &mut self,
+        skeleton: &Bitmap,
+        label: &mut Labels,
+        start_node: usize,
+        from: (usize, usize),
+        first: (usize, usize),
+    ) {
+        let width = skeleton.width();
+        let index = |(x, y): (usize, usize)| y * width + x;
+        let mut points = vec![self.nodes[start_node].position, centre(first.0, first.1)];
+        label.insert(index(first), PATH_PIXEL);
+        let (mut previous, mut current) = (from, first);
+        let end_node = loop {
+            let mut next_path = None;
+            let mut next_node = None;
+            for &(dx, dy) in &NEIGHBOUR_OFFSETS {
+                let (nx, ny) = (current.0 as isize + dx, current.1 as isize + dy);
+                if !skeleton.get_signed(nx, ny) || (nx as usize, ny as usize) == previous {
+                    continue;
+                }
+                let p = (nx as usize, ny as usize);
+                match label.get(&index(p)) {
+                    None => next_path = next_path.or(Some(p)),
+                    Some(&PATH_PIXEL) => {}
+                    // Touching the cluster just left, on the first step, is not an arrival.
+                    Some(&node) if node == start_node && points.len() == 2 => {}
+                    Some(&node) => next_node = next_node.or(Some(node)),
+                }
+            }
+            match (next_node, next_path) {
+                (Some(node), _) => break Some(node),
+                (None, Some(p)) => {
+                    label.insert(index(p), PATH_PIXEL);
+                    points.push(centre(p.0, p.1));
+                    previous = current;
+                    current = p;
+                }
+                (None, None) => break None,
+            }
+        };
+        let end_node = match end_node {
+            Some(node) => {
+                points.push(self.nodes[node].position);
+                node
+            }
+            None if points.len() == 2 && self.touches(skeleton, label, current, start_node) => {
+                // A single pixel hugging its own junction: nothing to keep.
+                return;
+            }
+            None => {
+                // Only reachable on a skeleton that is not fully thinned; end the branch here.
+                let node = self.nodes.len();
+                self.nodes.push(Node {
+                    position: *points.last().expect("branch has points"),
+                    ends: Vec::new(),
+                    pruned: false,
+                });
+                node
+            }
+        };
+        let branch = self.branches.len();
+        self.nodes[start_node].ends.push((branch, true));
+        self.nodes[end_node].ends.push((branch, false));
+        self.branches.push(Branch {
+            points,
+            nodes: Some((start_node, end_node)),
+            removed: false,
+        });
+    }
+
+    /// Whether `pixel` has a neighbour labelled as `node`.
+    fn touches(
+        &self,
+        skeleton: &Bitmap,
+        label: &Labels,
+        pixel: (usize, usize),
+        node: usize,
+    ) -> bool {
+        let width = skeleton.width();
+        NEIGHBOUR_OFFSETS.iter().any(|&(dx, dy)| {
+            let (nx, ny) = (pixel.0 as isize + dx, pixel.1 as isize + dy);
+            skeleton.get_signed(nx, ny)
+                && label.get(&(ny as usize * width + nx as usize)) == Some(&node)
+        })
+    }
+
+    pub(super) fn remove_branch(&mut self, branch: usize) {
+        self.branches[branch].removed = true;
+        if let Some((a, z)) = self.branches[branch].nodes {
+            for node in [a, z] {
+                self.nodes[node].ends.retain(|&(b, _)| b != branch);
+                self.nodes[node].pruned = self.nodes[node].ends.is_empty();
+            }
+        }
+    }
+
+    /// The number of branch ends at `node`.
+    pub(super) fn degree(&self, node: usize) -> usize {
+        self.nodes[node].ends.len()
+    }
+
+    /// The direction in which `branch` leaves its node at its start (or end), measured to the
+    /// point `scale` along it.
+    pub(super) fn leaving_direction(
+        &self,
+        branch: usize,
+        at_start: bool,
+        scale: f64,
+    ) -> kurbo::Vec2 {
+        let points = &self.branches[branch].points;
+        let origin = if at_start {
+            points[0]
+        } else {
+            points[points.len() - 1]
+        };
+        let along = |k: usize| {
+            if at_start {
+                points[k]
+            } else {
+                points[points.len() - 1 - k]
+            }
+        };
+        let mut target = origin;
+        for k in 0..points.len() {
+            target = along(k);
+            if target.distance(origin) >= scale {
+                break;
+            }
+        }
+        let direction = target - origin;
+        let length = direction.hypot();
+        if length > 0.0 {
+            direction / length
+        } else {
+            kurbo::Vec2::ZERO
+        }
+    }
+}

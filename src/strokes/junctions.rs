@@ -1,0 +1,236 @@
+//! Junction pairing: at every node the straightest pairs of branch ends go on through it (good
+//! continuation); the rest end there, attached. Paired branches are then chained into strokes.
+
+use std::collections::{HashMap, HashSet};
+
+use kurbo::Point;
+
+use super::graph::{Node, SkeletonGraph};
+use super::{Stroke, StrokeEnd};
+use crate::geometry::Polyline;
+
+/// A branch end: the branch and whether it is the branch's start.
+type BranchEnd = (usize, bool);
+
+/// What the junctions decided, for chaining the branches into strokes.
+#[derive(Default)]
+struct Pairing {
+    /// The branch end each paired end continues into at its node.
+    partner: HashMap<BranchEnd, BranchEnd>,
+    /// Ends detached at a junction, with the junction's position.
+    attached: HashMap<BranchEnd, Point>,
+    /// Branch ends whose node position is dropped from the polyline, so that no two strokes
+    /// share a point (a crossing's second pair and detached branches).
+    skip_node_point: HashSet<BranchEnd>,
+}
+
+impl Pairing {
+    /// How a stroke ends at the branch end `end` where no partner continues it.
+    fn stroke_end(&self, end: BranchEnd) -> StrokeEnd {
+        self.attached
+            .get(&end)
+            .map_or(StrokeEnd::Free, |&p| StrokeEnd::Attached(p))
+    }
+}
+
+impl SkeletonGraph {
+    /// Pairs the branch ends at every node and chains paired branches into strokes: lone dots
+    /// first, then open strokes, then closed ones.
+    pub(super) fn into_strokes(self, direction_scale: f64) -> Vec<Stroke> {
+        let mut pairing = Pairing::default();
+        for node in &self.nodes {
+            self.pair_ends_at(node, direction_scale, &mut pairing);
+        }
+        let mut visited = vec![false; self.branches.len()];
+        let mut strokes = self.lone_dots();
+        self.chain_open_strokes(&pairing, &mut visited, &mut strokes);
+        self.chain_closed_strokes(&pairing, &mut visited, &mut strokes);
+        strokes
+    }
+
+    /// Greedy good continuation at one node: the straightest pair of branch ends goes through
+    /// first, then the next straightest of the ends left; an end left over is attached here.
+    fn pair_ends_at(&self, node: &Node, direction_scale: f64, pairing: &mut Pairing) {
+        let ends: Vec<BranchEnd> = node
+            .ends
+            .iter()
+            .copied()
+            .filter(|&(b, _)| !self.branches[b].removed)
+            .collect();
+        if ends.len() < 2 {
+            return;
+        }
+        let directions: Vec<kurbo::Vec2> = ends
+            .iter()
+            .map(|&(b, s)| self.leaving_direction(b, s, direction_scale))
+            .collect();
+        // Going straight through means the two leaving directions are opposite (dot product −1).
+        let mut pairs: Vec<(f64, usize, usize)> = Vec::new();
+        for i in 0..ends.len() {
+            for j in i + 1..ends.len() {
+                pairs.push((directions[i].dot(directions[j]), i, j));
+            }
+        }
+        pairs.sort_by(|a, b| a.0.total_cmp(&b.0).then((a.1, a.2).cmp(&(b.1, b.2))));
+        let mut used = vec![false; ends.len()];
+        let mut first_pair = true;
+        for (_, i, j) in pairs {
+            if used[i] || used[j] || ends[i].0 == ends[j].0 && ends.len() > 2 {
+                continue;
+            }
+            used[i] = true;
+            used[j] = true;
+            pairing.partner.insert(ends[i], ends[j]);
+            pairing.partner.insert(ends[j], ends[i]);
+            if !first_pair {
+                pairing.skip_node_point.insert(ends[i]);
+                pairing.skip_node_point.insert(ends[j]);
+            }
+            first_pair = false;
+        }
+        for (k, &end) in ends.iter().enumerate() {
+            if !used[k] {
+                pairing.attached.insert(end, node.position);
+                pairing.skip_node_point.insert(end);
+            }
+        }
+    }
+
+    /// A lone skeleton pixel (a dot) is a node with no branch at all: a one-point stroke.
+    fn lone_dots(&self) -> Vec<Stroke> {
+        self.nodes
+            .iter()
+            .filter(|node| node.ends.is_empty() && !node.pruned)
+            .map(|node| Stroke {
+                line: Polyline::new(vec![node.position], false),
+                ends: [StrokeEnd::Free, StrokeEnd::Free],
+            })
+            .collect()
+    }
+
+    /// Open strokes: one from every unpartnered branch end, in branch order, following the
+    /// partners until an end that has none.
+    fn chain_open_strokes(
+        &self,
+        pairing: &Pairing,
+        visited: &mut [bool],
+        strokes: &mut Vec<Stroke>,
+    ) {
+        for start_branch in 0..self.branches.len() {
+            for at_start in [true, false] {
+                let branch = &self.branches[start_branch];
+                if visited[start_branch]
+                    || branch.removed
+                    || branch.nodes.is_none()
+                    || pairing.partner.contains_key(&(start_branch, at_start))
+                {
+                    continue;
+                }
+                let first_end = pairing.stroke_end((start_branch, at_start));
+                let mut points: Vec<Point> = Vec::new();
+                let leaving =
+                    self.follow_partners((start_branch, at_start), pairing, visited, &mut points);
+                let last_end = pairing.stroke_end(leaving);
+                if !points.is_empty() {
+                    strokes.push(Stroke {
+                        line: Polyline::new(points, false),
+                        ends: [first_end, last_end],
+                    });
+                }
+            }
+        }
+    }
+
+    /// Closed strokes: loops with no node, and cycles of paired branches (what the open strokes
+    /// left unvisited).
+    fn chain_closed_strokes(
+        &self,
+        pairing: &Pairing,
+        visited: &mut [bool],
+        strokes: &mut Vec<Stroke>,
+    ) {
+        for start_branch in 0..self.branches.len() {
+            if visited[start_branch] || self.branches[start_branch].removed {
+                continue;
+            }
+            let mut points: Vec<Point> = Vec::new();
+            self.follow_partners((start_branch, true), pairing, visited, &mut points);
+            // A cycle through a node repeats the node point at both ends.
+            if points.len() > 1 && points[0] == points[points.len() - 1] {
+                points.pop();
+            }
+            if !points.is_empty() {
+                let closed = points.len() > 2;
+                strokes.push(Stroke {
+                    line: Polyline::new(points, closed),
+                    ends: [StrokeEnd::Free, StrokeEnd::Free],
+                });
+            }
+        }
+    }
+
+    /// Walks from the branch end `entry` through the branches its partners lead to, appending
+    /// their points, until an end with no unvisited partner; returns that last end.
+    fn follow_partners(
+        &self,
+        entry: BranchEnd,
+        pairing: &Pairing,
+        visited: &mut [bool],
+        points: &mut Vec<Point>,
+    ) -> BranchEnd {
+        let (mut b, mut entering_at_start) = entry;
+        loop {
+            visited[b] = true;
+            self.append_branch(points, b, entering_at_start, &pairing.skip_node_point);
+            let leaving = (b, !entering_at_start);
+            match pairing.partner.get(&leaving) {
+                Some(&(next, next_at_start)) if !visited[next] => {
+                    b = next;
+                    entering_at_start = next_at_start;
+                }
+                _ => return leaving,
+            }
+        }
+    }
+
+    /// Appends the points of `branch`, walked from its start if `from_start`, to `points`,
+    /// without repeating the shared node point and without node points marked to be skipped.
+    fn append_branch(
+        &self,
+        points: &mut Vec<Point>,
+        branch: usize,
+        from_start: bool,
+        skip_node_point: &HashSet<BranchEnd>,
+    ) {
+        let source = &self.branches[branch].points;
+        let count = source.len();
+        let is_node_end = self.branches[branch].nodes.is_some();
+        for k in 0..count {
+            let p = if from_start {
+                source[k]
+            } else {
+                source[count - 1 - k]
+            };
+            if is_node_end {
+                let at_first = k == 0;
+                let at_last = k + 1 == count;
+                // The first/last point of a branch is its node's position.
+                let end_key = if at_first {
+                    Some((branch, from_start))
+                } else if at_last {
+                    Some((branch, !from_start))
+                } else {
+                    None
+                };
+                if let Some(key) = end_key {
+                    if skip_node_point.contains(&key) && count > 2 {
+                        continue;
+                    }
+                }
+            }
+            if points.last() != Some(&p) {
+                points.push(p);
+            }
+        }
+    }
+}

@@ -1,0 +1,261 @@
+//! Skeleton to pen strokes: traces a 1-px skeleton into branches between end points and junctions,
+//! prunes spurs shorter than about a stroke width, and resolves every junction into continuing
+//! strokes by good continuation (the straightest pairs of branches go on through it).
+//!
+//! The crawl (Parakkat & Muthuganapathy 2016) cannot represent a vertex of degree three or more
+//! (the paper's §4.3 "T-junctions" limitation); resolving junctions here, where the ink shows
+//! which branches belong together, leaves it only chains to connect.
+
+mod graph;
+mod junctions;
+mod prune;
+mod sample;
+
+use kurbo::Point;
+
+use crate::geometry::Polyline;
+use crate::raster::bitmap::Bitmap;
+use graph::SkeletonGraph;
+
+pub(crate) use sample::MIN_LOOP_SAMPLES;
+pub use sample::{default_spacing, sample_strokes, simplification_tolerance};
+
+/// How one end of a [`Stroke`] ends.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum StrokeEnd {
+    /// The pen lifted here: the end may be bridged to another stroke across a gap.
+    Free,
+    /// The stroke runs into another one at a junction (a T): the curve should end exactly at this
+    /// point, on the other stroke, and never be bridged elsewhere.
+    Attached(Point),
+}
+
+/// A pen stroke: the points along the pen's path and how its two ends end. As extracted, the
+/// points are skeleton pixel centres (x + 0.5, y + 0.5); after [`sample_strokes`], the samples.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Stroke {
+    /// The points in order along the stroke (at least one), closed for a loop.
+    pub line: Polyline,
+    /// How the first and the last point end; both [`StrokeEnd::Free`] for loops.
+    pub ends: [StrokeEnd; 2],
+}
+
+/// A bubble (a small loop between two junctions, the skeleton of a sliver of paper between two
+/// strokes laid side by side) is shorter than this: a real drawn loop is much bigger than a few
+/// pen widths.
+const BUBBLE_MAX_LENGTH_IN_PEN_WIDTHS: f64 = 4.0;
+/// The same in pixels, for hairlines, whose slivers are a few pixels long whatever the pen.
+const BUBBLE_MAX_LENGTH_FLOOR_PX: f64 = 8.0;
+
+/// Branch directions at a junction are measured this far along each branch: far enough to look
+/// past the junction's own blob of ink, near enough to follow a curving stroke.
+const DIRECTION_SCALE_IN_PEN_WIDTHS: f64 = 2.0;
+/// The same in pixels, so that a hairline's direction spans more than a pixel or two.
+const DIRECTION_SCALE_FLOOR_PX: f64 = 4.0;
+
+/// The spur that runs into a corner filled by a thick pen is at most this long: the corner's
+/// ink reaches a few pen widths beyond where the two sides' centre lines meet.
+const CORNER_SPUR_MAX_LENGTH_IN_PEN_WIDTHS: f64 = 6.0;
+/// The same in pixels, for thin pens.
+const CORNER_SPUR_MAX_LENGTH_FLOOR_PX: f64 = 6.0;
+
+/// Thinning leaves a spur at every bump of a stroke's outline; bumps are at most about half a
+/// pen width high, so their spurs are shorter than one pen width.
+const SPUR_MAX_LENGTH_IN_PEN_WIDTHS: f64 = 1.0;
+/// The same in pixels: on a hairline, one-pixel bumps still leave spurs of two pixels.
+const SPUR_MAX_LENGTH_FLOOR_PX: f64 = 2.0;
+
+/// Pruning can expose a new spur (two spurs forking off one branch), hence a second round.
+const SPUR_PRUNING_ROUNDS: usize = 2;
+
+/// Traces `skeleton` into strokes. `stroke_width` (the pen width in pixels) sets the longest spur
+/// that is pruned and the scale at which branch directions are measured at a junction.
+///
+/// The result is deterministic: strokes come in the order of their first pixel in raster order.
+pub fn extract_strokes(skeleton: &Bitmap, stroke_width: f64) -> Vec<Stroke> {
+    let in_pixels = |pen_widths: f64, floor: f64| (pen_widths * stroke_width).max(floor);
+    let mut graph = SkeletonGraph::trace(skeleton);
+    // Two strokes laid side by side enclose slivers of paper; their skeleton is a small loop (a
+    // bubble) between two junctions.
+    graph.collapse_bubbles(in_pixels(
+        BUBBLE_MAX_LENGTH_IN_PEN_WIDTHS,
+        BUBBLE_MAX_LENGTH_FLOOR_PX,
+    ));
+    // A corner drawn with a thick pen fills with ink; its skeleton runs into the corner as a
+    // spur from a junction just inside it. The spur's tip is the corner.
+    let direction_scale = in_pixels(DIRECTION_SCALE_IN_PEN_WIDTHS, DIRECTION_SCALE_FLOOR_PX);
+    graph.fold_corner_spurs(
+        in_pixels(
+            CORNER_SPUR_MAX_LENGTH_IN_PEN_WIDTHS,
+            CORNER_SPUR_MAX_LENGTH_FLOOR_PX,
+        ),
+        direction_scale,
+    );
+    let spur_length = in_pixels(SPUR_MAX_LENGTH_IN_PEN_WIDTHS, SPUR_MAX_LENGTH_FLOOR_PX);
+    for _ in 0..SPUR_PRUNING_ROUNDS {
+        graph.prune_spurs(spur_length);
+    }
+    graph.into_strokes(direction_scale)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn strokes_of(grid: &str, stroke_width: f64) -> Vec<Stroke> {
+        extract_strokes(&Bitmap::from_grid(grid), stroke_width)
+    }
+
+    #[test]
+    fn a_line_is_one_open_stroke_with_free_ends() {
+        let strokes = strokes_of(
+            "
+            ........
+            .######.
+            ........",
+            1.0,
+        );
+        assert_eq!(strokes.len(), 1);
+        let stroke = &strokes[0];
+        assert!(!stroke.line.closed);
+        assert_eq!(stroke.ends, [StrokeEnd::Free, StrokeEnd::Free]);
+        assert_eq!(stroke.line.points.first(), Some(&Point::new(1.5, 1.5)));
+        assert_eq!(stroke.line.points.last(), Some(&Point::new(6.5, 1.5)));
+        assert_eq!(stroke.line.points.len(), 6);
+    }
+
+    #[test]
+    fn a_ring_is_one_closed_stroke() {
+        let strokes = strokes_of(
+            "
+            .......
+            ..###..
+            .#...#.
+            .#...#.
+            .#...#.
+            ..###..
+            .......",
+            1.0,
+        );
+        assert_eq!(strokes.len(), 1);
+        assert!(strokes[0].line.closed);
+        assert_eq!(strokes[0].line.points.len(), 12);
+    }
+
+    #[test]
+    fn a_t_junction_keeps_the_bar_whole_and_attaches_the_stem() {
+        let strokes = strokes_of(
+            "
+            .............
+            .###########.
+            ......#......
+            ......#......
+            ......#......
+            ......#......
+            ......#......
+            .............",
+            1.0,
+        );
+        assert_eq!(strokes.len(), 2, "{strokes:?}");
+        let bar = strokes
+            .iter()
+            .find(|s| s.ends == [StrokeEnd::Free, StrokeEnd::Free])
+            .expect("bar with two free ends");
+        assert_eq!(bar.line.points.first().unwrap().x, 1.5);
+        assert_eq!(bar.line.points.last().unwrap().x, 11.5);
+        let stem = strokes.iter().find(|s| s != &bar).expect("stem");
+        assert!(stem.line.points.iter().all(|p| p.x == 6.5), "{stem:?}");
+        let attached: Vec<_> = stem
+            .ends
+            .iter()
+            .filter(|e| matches!(e, StrokeEnd::Attached(_)))
+            .collect();
+        assert_eq!(attached.len(), 1, "{stem:?}");
+        if let StrokeEnd::Attached(p) = attached[0] {
+            assert!(p.distance(Point::new(6.5, 1.5)) < 1.0, "{p:?}");
+        }
+    }
+
+    #[test]
+    fn a_crossing_becomes_two_straight_strokes() {
+        let strokes = strokes_of(
+            "
+            ...........
+            .....#.....
+            .....#.....
+            .....#.....
+            .....#.....
+            .#########.
+            .....#.....
+            .....#.....
+            .....#.....
+            .....#.....
+            ...........",
+            1.0,
+        );
+        assert_eq!(strokes.len(), 2, "{strokes:?}");
+        for stroke in &strokes {
+            let first = stroke.line.points[0];
+            let last = *stroke.line.points.last().unwrap();
+            let horizontal = first.y == last.y;
+            let vertical = first.x == last.x;
+            assert!(horizontal || vertical, "{stroke:?}");
+            assert!(first.distance(last) >= 8.0, "{stroke:?}");
+        }
+        // No point is shared between the two strokes.
+        let shared = strokes[0]
+            .line
+            .points
+            .iter()
+            .filter(|p| strokes[1].line.points.contains(p))
+            .count();
+        assert_eq!(shared, 0);
+    }
+
+    #[test]
+    fn short_spurs_are_pruned_long_branches_are_not() {
+        let grid = "
+            ............
+            .##########.
+            .....#......
+            .....#......
+            .....#......
+            ............";
+        let pruned = strokes_of(grid, 4.0);
+        assert_eq!(pruned.len(), 1, "{pruned:?}");
+        assert_eq!(pruned[0].ends, [StrokeEnd::Free, StrokeEnd::Free]);
+        let kept = strokes_of(grid, 1.0);
+        assert_eq!(
+            kept.len(),
+            2,
+            "with a tiny pen the spur is a stroke: {kept:?}"
+        );
+    }
+
+    #[test]
+    fn a_lone_pixel_is_a_one_point_stroke() {
+        let strokes = strokes_of("...\n.#.\n...", 1.0);
+        assert_eq!(strokes.len(), 1);
+        assert_eq!(strokes[0].line.points, vec![Point::new(1.5, 1.5)]);
+        assert!(!strokes[0].line.closed);
+    }
+
+    #[test]
+    fn a_closed_shape_with_a_tail_keeps_the_loop_closed() {
+        // A ring with a long tail: the junction pairs the tail with one side of the ring.
+        let strokes = strokes_of(
+            "
+            ..............
+            ..###.........
+            .#...#........
+            .#...#........
+            .#...#........
+            ..###.#######.
+            ..............",
+            1.0,
+        );
+        let total: usize = strokes.iter().map(|s| s.line.points.len()).sum();
+        assert!(total >= 18, "{strokes:?}");
+        assert!(strokes.len() <= 2, "{strokes:?}");
+    }
+}

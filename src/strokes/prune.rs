@@ -1,0 +1,148 @@
+//! Cleaning the skeleton graph before it becomes strokes: bubbles between strokes laid side by
+//! side, filled corners of a thick pen, and the spurs thinning leaves at bumps of the outline.
+
+use std::collections::HashMap;
+
+use crate::geometry::polyline::polyline_length;
+
+use super::graph::SkeletonGraph;
+
+/// A filled corner's spur points away from both sides: each side leaves the junction within 60°
+/// of the direction opposite the spur, so the cosine between the spur and either side is below
+/// cos 120° = −0.5. A stroke's branch in a T or a crossing meets the others at about 90°.
+const CORNER_SPUR_MAX_COSINE: f64 = -0.5;
+
+impl SkeletonGraph {
+    /// Removes small loops: a branch from a node back to itself, and all but the shortest of
+    /// several branches between the same two nodes, when shorter than `max_length`.
+    pub(super) fn collapse_bubbles(&mut self, max_length: f64) {
+        let mut shortest_between: HashMap<(usize, usize), (f64, usize)> = HashMap::new();
+        let mut to_remove = Vec::new();
+        for (i, branch) in self.branches.iter().enumerate() {
+            let Some((a, z)) = branch.nodes else { continue };
+            let length = polyline_length(&branch.points, false);
+            if length >= max_length {
+                continue;
+            }
+            if a == z {
+                to_remove.push(i);
+                continue;
+            }
+            let key = (a.min(z), a.max(z));
+            match shortest_between.get(&key) {
+                Some(&(best, _)) if best <= length => to_remove.push(i),
+                Some(&(_, best_branch)) => {
+                    to_remove.push(best_branch);
+                    shortest_between.insert(key, (length, i));
+                }
+                None => {
+                    shortest_between.insert(key, (length, i));
+                }
+            }
+        }
+        to_remove.sort_unstable();
+        to_remove.dedup();
+        for branch in to_remove {
+            self.remove_branch(branch);
+        }
+    }
+
+    /// At a junction of exactly three branches where one is a spur shorter than `max_length`
+    /// pointing away from both others (each other branch leaves within 60° of the direction
+    /// opposite the spur), the spur is a filled corner: it is removed and the junction moves to
+    /// its tip, so the two sides meet there in a sharp corner.
+    pub(super) fn fold_corner_spurs(&mut self, max_length: f64, direction_scale: f64) {
+        for node in 0..self.nodes.len() {
+            let ends = self.nodes[node].ends.clone();
+            if ends.len() != 3 {
+                continue;
+            }
+            // Of the short free-ended branches here, the one that points most squarely away
+            // from both others.
+            let mut best: Option<(f64, usize)> = None;
+            for (k, &(b, at_start)) in ends.iter().enumerate() {
+                let branch = &self.branches[b];
+                let (a, z) = branch.nodes.expect("node branches have nodes");
+                let far = if at_start { z } else { a };
+                if far == node
+                    || self.degree(far) != 1
+                    || polyline_length(&branch.points, false) >= max_length
+                {
+                    continue;
+                }
+                let direction = self.leaving_direction(b, at_start, direction_scale);
+                let score = ends
+                    .iter()
+                    .filter(|&&(other, _)| other != b)
+                    .map(|&(other, other_at_start)| {
+                        direction.dot(self.leaving_direction(
+                            other,
+                            other_at_start,
+                            direction_scale,
+                        ))
+                    })
+                    .fold(f64::NEG_INFINITY, f64::max);
+                if score < CORNER_SPUR_MAX_COSINE && best.is_none_or(|(s, _)| score < s) {
+                    best = Some((score, k));
+                }
+            }
+            let Some((_, spur)) = best else { continue };
+            let (spur_branch, spur_at_start) = ends[spur];
+            let sides: Vec<(usize, bool)> = ends
+                .iter()
+                .copied()
+                .filter(|&(b, _)| b != spur_branch)
+                .collect();
+            if sides.len() != 2 {
+                continue;
+            }
+            let tip = {
+                let points = &self.branches[spur_branch].points;
+                if spur_at_start {
+                    points[points.len() - 1]
+                } else {
+                    points[0]
+                }
+            };
+            self.remove_branch(spur_branch);
+            self.nodes[node].position = tip;
+            for (b, at_start) in sides {
+                let points = &mut self.branches[b].points;
+                if at_start {
+                    points[0] = tip;
+                } else {
+                    let last = points.len() - 1;
+                    points[last] = tip;
+                }
+            }
+        }
+    }
+
+    /// Removes branches from a free end to a junction that are shorter than `spur_length`,
+    /// shortest first.
+    pub(super) fn prune_spurs(&mut self, spur_length: f64) {
+        let mut spurs: Vec<(f64, usize)> = self
+            .branches
+            .iter()
+            .enumerate()
+            .filter(|(_, b)| !b.removed)
+            .filter_map(|(i, b)| {
+                let (a, z) = b.nodes?;
+                let length = polyline_length(&b.points, false);
+                let is_spur = (self.degree(a) == 1 && self.degree(z) >= 3)
+                    || (self.degree(z) == 1 && self.degree(a) >= 3);
+                (is_spur && length < spur_length).then_some((length, i))
+            })
+            .collect();
+        spurs.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        for (_, branch) in spurs {
+            let (a, z) = self.branches[branch].nodes.expect("spurs have nodes");
+            // An earlier removal may have turned the junction into a pass-through: keep it then.
+            let junction = if self.degree(a) == 1 { z } else { a };
+            if self.degree(junction) < 3 {
+                continue;
+            }
+            self.remove_branch(branch);
+        }
+    }
+}
