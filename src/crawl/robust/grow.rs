@@ -335,6 +335,9 @@ impl<'a> Crawler<'a> {
             if !self.is_free(w) || squared > limit {
                 continue;
             }
+            // Touch the candidate's neighbour list now: the chain will most likely step there
+            // next, and the load overlaps with this step's work instead of stalling the next.
+            std::hint::black_box(graph.squared_lengths(w).first());
             let turn_cos = self.local.turn_cos(p, e, w);
             candidates.push(Step {
                 to: w,
