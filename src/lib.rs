@@ -9,7 +9,10 @@
 //! |---|---|---|
 //! | trace an image in memory | [`trace()`] | [`Traced`]: a [`Drawing`], one path per drawn shape |
 //! | trace an image file | [`trace_file`] | [`Traced`] |
-//! | write SVG | [`to_svg`] | the SVG text of a [`Drawing`] |
+//! | trace an image file held in memory | [`trace_bytes`] | [`Traced`] |
+//! | write SVG | [`to_svg`], [`to_svg_with_size`] | the SVG text of a [`Drawing`], in pixels or at a physical size |
+//! | write DXF | [`to_dxf`] | the DXF text of a [`Drawing`], one polyline per curve |
+//! | write a traced drawing as SVG or DXF at its physical size | [`export()`] | the file's text |
 //! | reconstruct curves from points (the paper's crawl) | [`reconstruct()`] | [`Reconstruction`]: chains of input indices, open or closed, and outliers |
 //! | reconstruct curves from points with stray points, sharp corners, open ends or thin parts (the robust crawl, `crawltrace points`' default) | [`reconstruct_robust()`] | [`Reconstruction`] |
 //! | read a point file | [`parse_points`] | [`PointFile`]: the points and their line numbers |
@@ -39,6 +42,7 @@ pub mod files;
 pub mod stages;
 
 mod crawl;
+mod export;
 mod geometry;
 mod output;
 mod points;
@@ -52,8 +56,13 @@ pub use crawl::reconstruct::{reconstruct, Curve, MergedDuplicate, Reconstruction
 pub use crawl::robust::reconstruct as reconstruct_robust;
 pub use crawl::strokes::Method;
 pub use crawl::ReconstructError;
+pub use export::{export, ExportOptions, OutputFormat};
+pub use output::dxf::to_dxf;
 pub use output::render::{render_svg, RenderError};
-pub use output::svg::{to_svg, CurvePath, Drawing};
+pub use output::svg::{to_svg, to_svg_with_size, CurvePath, Drawing};
+pub use output::units::{Length, PhysicalSize, SizeRequest, SizeRequestError, Units, UnitsError};
 pub use points::read::{parse_points, PointFile, PointFileError};
 pub use raster::binarize::{BinarizeOptions, ThresholdMethod};
-pub use trace::{trace, trace_file, TraceError, TraceFileError, TraceOptions, TraceReport, Traced};
+pub use trace::{
+    trace, trace_bytes, trace_file, TraceError, TraceFileError, TraceOptions, TraceReport, Traced,
+};

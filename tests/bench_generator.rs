@@ -132,6 +132,7 @@ fn stray_ink(truth: &BenchTruth, gray: &image::GrayImage) -> Option<String> {
         path.move_to(dot.centre);
         path.line_to(dot.centre);
         paths.push(CurvePath {
+            stroke_width: None,
             path,
             closed: false,
         });

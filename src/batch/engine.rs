@@ -68,7 +68,7 @@ where
             .inputs
             .par_iter()
             .map(|input| {
-                let outcome = process_one(input, out_dir, options.force, discovery, &process);
+                let outcome = process_one(input, out_dir, options, discovery, &process);
                 if let FileStatus::Failed { error, .. } = &outcome.status {
                     console.line(&failure_line(&outcome.source, &error.to_string()));
                 }
@@ -150,7 +150,7 @@ fn lands_on_protected(path: &Path, protected: &HashSet<PathBuf>) -> bool {
 fn process_one<F, E>(
     input: &Input,
     out_dir: &Path,
-    force: bool,
+    options: &BatchOptions,
     discovery: &Discovery,
     process: &F,
 ) -> FileOutcome<E>
@@ -166,8 +166,8 @@ where
             },
         ),
         None => {
-            let output = out_dir.join(input.output_relative());
-            let status = trace_one(input, &output, force, discovery, process);
+            let output = out_dir.join(input.output_relative(options.format));
+            let status = trace_one(input, &output, options.force, discovery, process);
             (Some(output), status)
         }
     };
@@ -231,7 +231,7 @@ where
         let folder = folder.to_path_buf();
         return failed(FileError::CreateFolder { folder, source }, Some(seconds()));
     }
-    if let Err(source) = write_atomically(output, &result.svg) {
+    if let Err(source) = write_atomically(output, &result.bytes) {
         let output = output.to_path_buf();
         return failed(FileError::Write { output, source }, Some(seconds()));
     }

@@ -24,6 +24,11 @@ pub enum RenderError {
 /// The largest raster side we agree to allocate, in pixels.
 const MAX_SIDE: u32 = 30_000;
 
+/// A raster side within this much (pixels) above a whole number is that number: a size in mm or
+/// inches (`width="52.9167mm"`, 200 px at 96 dpi) comes back from usvg's f32 arithmetic a hair
+/// above the pixel count it was written from, and must not gain a row of pixels.
+const SIZE_ROUNDING_SLACK: f32 = 0.01;
+
 /// Renders `svg` at `scale` (1 = the document's own pixel size) onto a white background.
 ///
 /// # Examples
@@ -47,8 +52,8 @@ const MAX_SIDE: u32 = 30_000;
 pub fn render_svg(svg: &str, scale: f32) -> Result<RgbaImage, RenderError> {
     let tree = usvg::Tree::from_str(svg, &usvg::Options::default())?;
     let size = tree.size();
-    let width = (size.width() * scale).ceil() as u32;
-    let height = (size.height() * scale).ceil() as u32;
+    let whole_pixels = |length: f32| (length * scale - SIZE_ROUNDING_SLACK).ceil() as u32;
+    let (width, height) = (whole_pixels(size.width()), whole_pixels(size.height()));
     let too_big = !(scale.is_finite() && scale > 0.0) || width > MAX_SIDE || height > MAX_SIDE;
     let pixmap = if too_big {
         None
@@ -94,5 +99,16 @@ mod tests {
             render_svg(svg, 1e6),
             Err(RenderError::Size { .. })
         ));
+    }
+
+    #[test]
+    fn physical_sizes_render_at_their_pixel_count() {
+        // 200 × 150 px at 96 dpi, written in mm with four decimals.
+        let svg = r#"<svg xmlns="http://www.w3.org/2000/svg" width="52.9167mm" height="39.6875mm" viewBox="0 0 200 150"/>"#;
+        assert_eq!(render_svg(svg, 1.0).unwrap().dimensions(), (200, 150));
+        assert_eq!(render_svg(svg, 2.0).unwrap().dimensions(), (400, 300));
+        // A real fraction still rounds up.
+        let svg = r#"<svg xmlns="http://www.w3.org/2000/svg" width="20.5" height="10"/>"#;
+        assert_eq!(render_svg(svg, 1.0).unwrap().dimensions(), (21, 10));
     }
 }
