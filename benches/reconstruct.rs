@@ -1,6 +1,6 @@
-//! Benchmarks of point-set reconstruction (divan): the Delaunay triangulation, the crawl on it, the
-//! whole `reconstruct`, and the file stages of `crawltrace points` (parsing, JSON), on 10k, 100k and
-//! 1M points sampled from many closed curves.
+//! Benchmarks of point-set reconstruction (divan): the Delaunay triangulation, the crawls on it
+//! (the paper's and the robust one), the whole reconstruction by each, and the file stages of
+//! `crawltrace points` (parsing, JSON), on 10k, 100k and 1M points sampled from many closed curves.
 //!
 //! ```sh
 //! cargo bench --bench reconstruct
@@ -11,8 +11,9 @@ use std::f64::consts::TAU;
 use crawltrace::stages::crawl::algorithm::crawl;
 use crawltrace::stages::crawl::neighbours::NeighbourGraph;
 use crawltrace::stages::crawl::reconstruct::paper_closable;
+use crawltrace::stages::crawl::robust;
 use crawltrace::stages::points::write as pointset;
-use crawltrace::{parse_points, reconstruct, Point};
+use crawltrace::{parse_points, reconstruct, reconstruct_robust, Point};
 use divan::{black_box, Bencher};
 
 fn main() {
@@ -90,9 +91,22 @@ fn crawl_on_triangulation(bencher: Bencher, count: usize) {
 }
 
 #[divan::bench(args = SIZES, sample_count = 5, sample_size = 1)]
+fn robust_crawl_on_triangulation(bencher: Bencher, count: usize) {
+    let positions = canonical(&curve_points(count));
+    let graph = NeighbourGraph::delaunay(&positions).unwrap();
+    bencher.bench(|| robust::crawl(black_box(&positions), black_box(&graph)));
+}
+
+#[divan::bench(args = SIZES, sample_count = 5, sample_size = 1)]
 fn reconstruct_whole(bencher: Bencher, count: usize) {
     let points = curve_points(count);
     bencher.bench(|| reconstruct(black_box(&points)).unwrap());
+}
+
+#[divan::bench(args = SIZES, sample_count = 5, sample_size = 1)]
+fn reconstruct_robust_whole(bencher: Bencher, count: usize) {
+    let points = curve_points(count);
+    bencher.bench(|| reconstruct_robust(black_box(&points)).unwrap());
 }
 
 /// The point file `crawltrace points` would read for `count` points.

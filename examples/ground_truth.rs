@@ -1,5 +1,6 @@
 //! Prints the README's ground-truth table: every sample in `samples/` traced with the stroke-aware
-//! crawl (default) and with the paper's plain crawl (`--method points`), each scored against the
+//! crawl (default), the paper's plain crawl (`--method paper`) and the robust point-set crawl on
+//! all samples (`--method points`), each scored against the
 //! sample's true curves (`<name>.truth.svg`) by `tests/support`'s matcher: a true curve counts
 //! when exactly one output path has its closedness and lies within pen width / 2 + 2 px of it
 //! (symmetric Hausdorff distance).
@@ -64,10 +65,10 @@ fn main() {
         })
         .collect();
     samples.sort();
-    println!("| sample | true curves (closed) | stroke-aware crawl: matched, extra paths, worst px | paper's crawl: matched, extra paths |");
-    println!("|---|---|---|---|");
-    let (mut total, mut strokes_ok, mut points_ok) = (0, 0, 0);
-    let (mut curves, mut strokes_curves, mut points_curves) = (0, 0, 0);
+    println!("| sample | true curves (closed) | stroke-aware crawl: matched, extra paths, worst px | paper's crawl: matched, extra paths | robust point crawl: matched, extra paths |");
+    println!("|---|---|---|---|---|");
+    let (mut total, mut strokes_ok, mut points_ok, mut robust_ok) = (0, 0, 0, 0);
+    let (mut curves, mut strokes_curves, mut points_curves, mut robust_curves) = (0, 0, 0, 0);
     for image in &samples {
         let truth_path = image.with_extension("truth.svg");
         let Ok(truth_svg) = std::fs::read_to_string(&truth_path) else {
@@ -76,7 +77,8 @@ fn main() {
         let truth = support::load_curves(&truth_svg);
         let closed = truth.iter().filter(|c| c.closed).count();
         let strokes = score(image, &truth_svg, Method::Strokes);
-        let points = score(image, &truth_svg, Method::Points);
+        let points = score(image, &truth_svg, Method::Paper);
+        let robust = score(image, &truth_svg, Method::Points);
         let mark = |s: &Score| {
             if s.matched == truth.len() && s.extra == 0 {
                 "✔"
@@ -85,7 +87,7 @@ fn main() {
             }
         };
         println!(
-            "| {} | {} ({}) | {} {}/{}, {}, {:.1} | {} {}/{}, {} |",
+            "| {} | {} ({}) | {} {}/{}, {}, {:.1} | {} {}/{}, {} | {} {}/{}, {} |",
             image.file_name().unwrap().to_string_lossy(),
             truth.len(),
             closed,
@@ -98,6 +100,10 @@ fn main() {
             points.matched,
             truth.len(),
             points.extra,
+            mark(&robust),
+            robust.matched,
+            truth.len(),
+            robust.extra,
         );
         total += 1;
         curves += truth.len();
@@ -105,8 +111,10 @@ fn main() {
         points_curves += points.matched;
         strokes_ok += usize::from(strokes.matched == truth.len() && strokes.extra == 0);
         points_ok += usize::from(points.matched == truth.len() && points.extra == 0);
+        robust_curves += robust.matched;
+        robust_ok += usize::from(robust.matched == truth.len() && robust.extra == 0);
     }
     println!(
-        "| **all** | {curves} | {strokes_ok}/{total} samples, {strokes_curves}/{curves} curves | {points_ok}/{total} samples, {points_curves}/{curves} curves |"
+        "| **all** | {curves} | {strokes_ok}/{total} samples, {strokes_curves}/{curves} curves | {points_ok}/{total} samples, {points_curves}/{curves} curves | {robust_ok}/{total} samples, {robust_curves}/{curves} curves |"
     );
 }

@@ -9,12 +9,14 @@
 # REFDIR defaults to ${TMPDIR:-/tmp}/crawltrace-reference, outside the repository. What is run,
 # for every image in samples/ (the 4000×3000 page included):
 #   crawltrace trace IMG -o NAME.svg                      (default options)
-#   crawltrace trace IMG -o NAME.points.svg --method points
+#   crawltrace trace IMG -o NAME.points.svg --method points   (the robust point-set crawl)
+#   crawltrace trace IMG -o NAME.paper.svg --method paper     (the paper's crawl)
 #   crawltrace trace IMG -o NAME.straight.svg --no-smooth
 # and once each:
 #   crawltrace points samples/points/shapes.txt -o shapes.json          (JSON)
 #   crawltrace points samples/points/shapes.txt -o shapes.svg           (SVG)
 #   crawltrace points samples/points/shapes.txt -o shapes.dots.svg --show-points
+#   crawltrace points samples/points/shapes.txt -o shapes.paper.json --method paper
 #   crawltrace trace samples/face-scan.jpg -o debug.svg --debug debug/  (the stage pictures)
 # Exit status: 0 when every file is identical (and none is missing or new), 1 otherwise.
 set -euo pipefail
@@ -37,12 +39,14 @@ for image in samples/*.png samples/*.jpg; do
     name="$(basename "${image%.*}")"
     "$binary" trace -q "$image" -o "$outputs/$name.svg"
     "$binary" trace -q "$image" -o "$outputs/$name.points.svg" --method points
+    "$binary" trace -q "$image" -o "$outputs/$name.paper.svg" --method paper
     "$binary" trace -q "$image" -o "$outputs/$name.straight.svg" --no-smooth
 done
 points=samples/points/shapes.txt
 "$binary" points "$points" -o "$outputs/shapes.json"
 "$binary" points "$points" -o "$outputs/shapes.svg"
 "$binary" points "$points" -o "$outputs/shapes.dots.svg" --show-points
+"$binary" points "$points" -o "$outputs/shapes.paper.json" --method paper
 "$binary" trace -q samples/face-scan.jpg -o "$outputs/debug.svg" --debug "$outputs/debug"
 
 if $record; then

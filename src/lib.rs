@@ -13,7 +13,8 @@
 //! | write SVG | [`to_svg`], [`to_svg_with_size`] | the SVG text of a [`Drawing`], in pixels or at a physical size |
 //! | write DXF | [`to_dxf`] | the DXF text of a [`Drawing`], one polyline per curve |
 //! | write a traced drawing as SVG or DXF at its physical size | [`export()`] | the file's text |
-//! | reconstruct curves from points | [`reconstruct()`] | [`Reconstruction`]: chains of input indices, open or closed, and outliers |
+//! | reconstruct curves from points (the paper's crawl) | [`reconstruct()`] | [`Reconstruction`]: chains of input indices, open or closed, and outliers |
+//! | reconstruct curves from points with stray points, sharp corners, open ends or thin parts (the robust crawl, `crawltrace points`' default) | [`reconstruct_robust()`] | [`Reconstruction`] |
 //! | read a point file | [`parse_points`] | [`PointFile`]: the points and their line numbers |
 //! | render SVG to pixels | [`render_svg`] | an RGBA image |
 //!
@@ -52,6 +53,7 @@ mod trace;
 pub use kurbo::Point;
 
 pub use crawl::reconstruct::{reconstruct, Curve, MergedDuplicate, Reconstruction};
+pub use crawl::robust::reconstruct as reconstruct_robust;
 pub use crawl::strokes::Method;
 pub use crawl::ReconstructError;
 pub use export::{export, ExportOptions, OutputFormat};

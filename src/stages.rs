@@ -27,9 +27,10 @@ pub mod crawl {
     //! The crawl (Parakkat & Muthuganapathy, 2016): [`algorithm`] is the paper's crawl on any
     //! [`neighbours::NeighbourGraph`] (the Delaunay triangulation is
     //! [`neighbours::NeighbourGraph::delaunay`]); [`reconstruct`] runs it on a point set with the
-    //! paper's closing rule; [`strokes`] runs it on sampled pen strokes, with bridges across the
-    //! gaps between their free ends.
-    pub use crate::crawl::{algorithm, neighbours, reconstruct, strokes, ReconstructError};
+    //! paper's closing rule; [`robust`] is the robust crawl for point sets (stray points, sharp
+    //! corners, open ends, thin parts); [`strokes`] runs it on sampled pen strokes, with bridges
+    //! across the gaps between their free ends.
+    pub use crate::crawl::{algorithm, neighbours, reconstruct, robust, strokes, ReconstructError};
 }
 
 pub mod points {

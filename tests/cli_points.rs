@@ -610,3 +610,54 @@ fn the_sample_point_set_comes_back_as_documented() {
     let plain = String::from_utf8(plain.stdout).unwrap();
     assert_eq!(plain.matches("<circle ").count(), 5);
 }
+
+/// A circle at spacing 1 and two stray points 0.6 apart, 5 spacings outside it: the robust crawl
+/// (the default) reports the strays as outliers; the paper's crawl (`--method paper`) takes them
+/// into a curve, as issue 10 describes.
+#[test]
+fn method_chooses_the_robust_crawl_by_default_or_the_papers() {
+    let folder = folder();
+    let count = 48;
+    let radius = count as f64 / TAU;
+    let mut text = circle_text(count, (0.0, 0.0), radius);
+    let _ = writeln!(text, "{} 0.3", radius + 5.0);
+    let _ = writeln!(text, "{} -0.3", radius + 5.0);
+    fs::write(folder.path().join("strays.txt"), &text).unwrap();
+    let robust = crawltrace(folder.path(), &["points", "strays.txt"], None)
+        .succeeded()
+        .json();
+    let curves = robust["curves"].as_array().unwrap();
+    assert_eq!(curves.len(), 1, "{robust}");
+    assert_eq!(curves[0]["closed"], Value::Bool(true), "{robust}");
+    let mut on_circle = as_indices(&curves[0]["indices"]);
+    on_circle.sort_unstable();
+    assert_eq!(on_circle, (0..count).collect::<Vec<_>>(), "{robust}");
+    assert_eq!(as_indices(&robust["outliers"]), [count, count + 1]);
+    let explicit = crawltrace(
+        folder.path(),
+        &["points", "strays.txt", "--method", "robust"],
+        None,
+    )
+    .succeeded()
+    .json();
+    assert_eq!(explicit, robust);
+    let paper = crawltrace(
+        folder.path(),
+        &["points", "strays.txt", "--method", "paper"],
+        None,
+    )
+    .succeeded()
+    .json();
+    assert_ne!(
+        as_indices(&paper["outliers"]),
+        [count, count + 1],
+        "the paper's crawl takes the stray pair into a curve: {paper}"
+    );
+    let run = crawltrace(
+        folder.path(),
+        &["points", "strays.txt", "--method", "nearest"],
+        None,
+    );
+    assert_eq!(run.code, Some(2), "{}", run.describe());
+    assert!(run.stderr.contains("--method"), "{}", run.describe());
+}

@@ -271,3 +271,37 @@ fn render_rasterizes_the_traced_svg() {
         "the preview shows the curves ({dark} dark pixels)"
     );
 }
+
+/// `--method` picks how samples are connected: the stroke-aware crawl (default, one path per
+/// drawn shape), or one of the point-set crawls on all samples, `points` (robust) and `paper`;
+/// every choice traces, and each point-set crawl differs from the default on a skip-stroke sketch.
+#[test]
+fn method_picks_the_crawl() {
+    let folder = tempfile::tempdir().unwrap();
+    write_image(
+        folder.path(),
+        "s.png",
+        sketch(240, 200).into(),
+        ImageFormat::Png,
+    );
+    let trace = |method: &str| {
+        let args = ["trace", "s.png", "--method", method, "-o", "-"];
+        let output = run(&args, folder.path());
+        assert_eq!(
+            output.status.code(),
+            Some(0),
+            "{}",
+            describe(&args, &output)
+        );
+        String::from_utf8(output.stdout).unwrap()
+    };
+    let strokes = trace("strokes");
+    assert_eq!(path_count(&strokes), (2, 1), "{strokes}");
+    let default = String::from_utf8(run(&["trace", "s.png", "-o", "-"], folder.path()).stdout);
+    assert_eq!(default.unwrap(), strokes);
+    for method in ["points", "paper"] {
+        let svg = trace(method);
+        assert!(path_count(&svg).0 >= 1, "--method {method}: {svg}");
+        assert_ne!(svg, strokes, "--method {method}");
+    }
+}

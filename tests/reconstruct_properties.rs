@@ -1,5 +1,6 @@
-//! Invariants of the crawl (`crawltrace::reconstruct`) on seeded random point sets, and the paper's
-//! ε-sampling theorem: densely sampled smooth closed curves come back exactly.
+//! Invariants of the crawls (the paper's, `crawltrace::reconstruct`, and the robust one,
+//! `crawltrace::reconstruct_robust`) on seeded random point sets, and the paper's ε-sampling theorem:
+//! densely sampled smooth closed curves come back exactly.
 //!
 //! Every input is made by a tiny SplitMix64 generator from a seed, so a failure names the seed that
 //! reproduces it. Shapes are smooth parametric curves; their minimum radius of curvature and their
@@ -10,7 +11,13 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::f64::consts::TAU;
 
 use crawltrace::stages::crawl::neighbours::NeighbourGraph;
-use crawltrace::{reconstruct, Point, Reconstruction};
+use crawltrace::{reconstruct, reconstruct_robust, Point, ReconstructError, Reconstruction};
+
+/// A reconstruction method: the paper's crawl or the robust one.
+type Method = fn(&[Point]) -> Result<Reconstruction, ReconstructError>;
+
+/// Both methods, named for failure messages. Every property below holds for both.
+const METHODS: [(&str, Method); 2] = [("paper", reconstruct), ("robust", reconstruct_robust)];
 
 /// SplitMix64 (Steele, Lea & Flood 2014): tiny, fast, and good enough to draw test shapes.
 struct SplitMix64(u64);
@@ -359,8 +366,8 @@ fn sample_scene(
 
 /// How the reconstruction of `points` differs from exactly the closed curves `cycles` with no
 /// outlier, if it does.
-fn exact_mismatch(points: &[Point], cycles: &[Vec<usize>]) -> Option<String> {
-    let result = reconstruct(points).unwrap();
+fn exact_mismatch(method: Method, points: &[Point], cycles: &[Vec<usize>]) -> Option<String> {
+    let result = method(points).unwrap();
     let context = || {
         format!(
             "{} points on {} curves (sizes {:?}); found curves of sizes {:?} (closed: {:?}), {} outliers",
@@ -404,8 +411,10 @@ fn exact_mismatch(points: &[Point], cycles: &[Vec<usize>]) -> Option<String> {
 }
 
 fn assert_exact(seed: u64, points: &[Point], cycles: &[Vec<usize>]) {
-    if let Some(mismatch) = exact_mismatch(points, cycles) {
-        panic!("seed {seed}: {mismatch}");
+    for (name, method) in METHODS {
+        if let Some(mismatch) = exact_mismatch(method, points, cycles) {
+            panic!("{name}, seed {seed}: {mismatch}");
+        }
     }
 }
 
@@ -506,24 +515,26 @@ fn dense_samples_of_a_lone_open_arc_come_back_as_one_open_curve() {
             .iter()
             .map(|&i| Point::new(coordinates[i].0, coordinates[i].1))
             .collect();
-        let result = reconstruct(&points).unwrap();
-        let context = format!(
-            "seed {seed}: {} points on an open arc; found curves of sizes {:?} (closed: {:?}), {} outliers",
-            points.len(),
-            result.curves.iter().map(|c| c.indices.len()).collect::<Vec<_>>(),
-            result.curves.iter().map(|c| c.closed).collect::<Vec<_>>(),
-            result.outliers.len()
-        );
-        assert_eq!(result.curves.len(), 1, "{context}");
-        assert!(!result.curves[0].closed, "{context}");
-        // Back from input positions to places along the arc: 0, 1, 2, … in either direction.
-        let along: Vec<usize> = result.curves[0].indices.iter().map(|&i| order[i]).collect();
-        let forward: Vec<usize> = (0..coordinates.len()).collect();
-        let backward: Vec<usize> = forward.iter().rev().copied().collect();
-        assert!(
-            along == forward || along == backward,
-            "{context}: out of order"
-        );
+        for (name, method) in METHODS {
+            let result = method(&points).unwrap();
+            let context = format!(
+                "{name}, seed {seed}: {} points on an open arc; found curves of sizes {:?} (closed: {:?}), {} outliers",
+                points.len(),
+                result.curves.iter().map(|c| c.indices.len()).collect::<Vec<_>>(),
+                result.curves.iter().map(|c| c.closed).collect::<Vec<_>>(),
+                result.outliers.len()
+            );
+            assert_eq!(result.curves.len(), 1, "{context}");
+            assert!(!result.curves[0].closed, "{context}");
+            // Back from input positions to places along the arc: 0, 1, 2, … in either direction.
+            let along: Vec<usize> = result.curves[0].indices.iter().map(|&i| order[i]).collect();
+            let forward: Vec<usize> = (0..coordinates.len()).collect();
+            let backward: Vec<usize> = forward.iter().rev().copied().collect();
+            assert!(
+                along == forward || along == backward,
+                "{context}: out of order"
+            );
+        }
     }
 }
 
@@ -594,6 +605,47 @@ fn paper_limit_a_dense_cluster_splits_a_circle_into_two_open_curves() {
     assert!(even.curves[0].closed);
 }
 
+/// The robust crawl closes a curve whose last gap is up to 2.5 times the spacing beside it (the
+/// closing edge is judged like any step), where the paper's leaves it open from 2 on.
+#[test]
+fn robust_closes_a_circle_across_a_gap_of_two_and_a_half_spacings() {
+    let count = 40;
+    for (gap_in_steps, closes) in [(1.8, true), (2.2, true), (2.4, true), (2.7, false)] {
+        let points = circle_arc(count, TAU / (count as f64 - 1.0 + gap_in_steps));
+        let result = reconstruct_robust(&points).unwrap();
+        assert_eq!(result.curves.len(), 1, "gap {gap_in_steps}");
+        assert_eq!(result.curves[0].closed, closes, "gap {gap_in_steps}");
+        assert_eq!(result.curves[0].indices.len(), count, "gap {gap_in_steps}");
+    }
+}
+
+/// The robust crawl keeps a circle whole across a short dense cluster: its steps are limited by
+/// the chain's own spacing, not by the distance between its extremities.
+#[test]
+fn robust_keeps_a_circle_with_a_dense_cluster_whole() {
+    let count = 60;
+    let step = TAU / count as f64;
+    let mut points: Vec<Point> = circle_arc(count, step).into_iter().skip(1).collect();
+    for k in [-1.5, -0.5, 0.5, 1.5] {
+        let angle = k * step / 8.0;
+        points.push(Point::new(10.0 * angle.cos(), 10.0 * angle.sin()));
+    }
+    let result = reconstruct_robust(&points).unwrap();
+    let shapes: Vec<(bool, usize)> = result
+        .curves
+        .iter()
+        .map(|c| (c.closed, c.indices.len()))
+        .collect();
+    assert_eq!(
+        shapes,
+        vec![(true, count + 3)],
+        "outliers {:?}",
+        result.outliers
+    );
+    assert_eq!(result.curves[0].indices.len(), count + 3);
+    assert!(result.outliers.is_empty());
+}
+
 /// A random scene for the invariant checks: closed curves sampled with uneven spacing, open arcs,
 /// a few stray points, and some exact duplicates; all coordinates multiples of 1/1024, so that
 /// translating by integers and scaling by powers of two are exact.
@@ -629,7 +681,7 @@ fn random_scene(random: &mut SplitMix64) -> Vec<Point> {
 }
 
 /// The structural invariants every reconstruction must satisfy; panics naming `seed`.
-fn check_invariants(seed: u64, points: &[Point], result: &Reconstruction) {
+fn check_invariants(seed: &str, points: &[Point], result: &Reconstruction) {
     // The distinct points in lexicographic order, as the library triangulates them.
     let mut distinct: Vec<(f64, f64)> = points.iter().map(|p| (p.x, p.y)).collect();
     distinct.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
@@ -659,10 +711,7 @@ fn check_invariants(seed: u64, points: &[Point], result: &Reconstruction) {
         .iter()
         .map(|d| (d.dropped, d.kept))
         .collect();
-    assert_eq!(
-        found_duplicates, expected_duplicates,
-        "seed {seed}: duplicates"
-    );
+    assert_eq!(found_duplicates, expected_duplicates, "{seed}: duplicates");
     let kept: BTreeSet<usize> = first_index_of.values().copied().collect();
 
     let mut degree: BTreeMap<usize, usize> = BTreeMap::new();
@@ -671,25 +720,25 @@ fn check_invariants(seed: u64, points: &[Point], result: &Reconstruction) {
         let minimum = if curve.closed { 4 } else { 3 };
         assert!(
             curve.indices.len() >= minimum,
-            "seed {seed}: curve {c} has {} points (closed: {})",
+            "{seed}: curve {c} has {} points (closed: {})",
             curve.indices.len(),
             curve.closed
         );
         for &index in &curve.indices {
             assert!(
                 kept.contains(&index),
-                "seed {seed}: curve {c} uses point {index}, a merged duplicate"
+                "{seed}: curve {c} uses point {index}, a merged duplicate"
             );
             assert!(
                 in_curve.insert(index),
-                "seed {seed}: point {index} appears twice (curve {c} or an earlier one)"
+                "{seed}: point {index} appears twice (curve {c} or an earlier one)"
             );
         }
     }
     for (a, b) in index_edges(result) {
         assert!(
             delaunay.has_edge(vertex_of(a), vertex_of(b)),
-            "seed {seed}: edge {a}–{b} ({:?}–{:?}) is not a Delaunay edge",
+            "{seed}: edge {a}–{b} ({:?}–{:?}) is not a Delaunay edge",
             points[a],
             points[b]
         );
@@ -697,22 +746,22 @@ fn check_invariants(seed: u64, points: &[Point], result: &Reconstruction) {
         *degree.entry(b).or_default() += 1;
     }
     if let Some((&index, &count)) = degree.iter().find(|&(_, &count)| count > 2) {
-        panic!("seed {seed}: point {index} has degree {count}");
+        panic!("{seed}: point {index} has degree {count}");
     }
 
     let outliers: BTreeSet<usize> = result.outliers.iter().copied().collect();
     assert!(
         result.outliers.windows(2).all(|w| w[0] < w[1]),
-        "seed {seed}: outliers not strictly ascending"
+        "{seed}: outliers not strictly ascending"
     );
     assert!(
         outliers.is_disjoint(&in_curve),
-        "seed {seed}: a point is both an outlier and on a curve"
+        "{seed}: a point is both an outlier and on a curve"
     );
     let covered: BTreeSet<usize> = outliers.union(&in_curve).copied().collect();
     assert_eq!(
         covered, kept,
-        "seed {seed}: outliers ∪ curve points ≠ distinct points"
+        "{seed}: outliers ∪ curve points ≠ distinct points"
     );
 }
 
@@ -754,8 +803,10 @@ fn random_scenes_satisfy_the_invariants() {
     for seed in 3000..3150 {
         let mut random = SplitMix64::new(seed);
         let points = random_scene(&mut random);
-        let result = reconstruct(&points).unwrap();
-        check_invariants(seed, &points, &result);
+        for (name, method) in METHODS {
+            let result = method(&points).unwrap();
+            check_invariants(&format!("{name}, seed {seed}"), &points, &result);
+        }
     }
 }
 
@@ -764,50 +815,68 @@ fn result_does_not_depend_on_order_translation_or_scale() {
     for seed in 4000..4120 {
         let mut random = SplitMix64::new(seed);
         let points = random_scene(&mut random);
-        let original = geometry(&points, &reconstruct(&points).unwrap(), |p| p);
-
-        let mut shuffled = points.clone();
-        random.shuffle(&mut shuffled);
-        let shuffled_geometry = geometry(&shuffled, &reconstruct(&shuffled).unwrap(), |p| p);
-
-        let shift = (
-            random.below(2001) as f64 - 1000.0,
-            random.below(2001) as f64 - 1000.0,
-        );
-        let moved: Vec<Point> = points
-            .iter()
-            .map(|p| Point::new(p.x + shift.0, p.y + shift.1))
-            .collect();
-        let moved_geometry = geometry(&moved, &reconstruct(&moved).unwrap(), |p| {
-            Point::new(p.x - shift.0, p.y - shift.1)
-        });
-
-        let factor = 2f64.powi(random.below(9) as i32 - 4);
-        let scaled: Vec<Point> = points
-            .iter()
-            .map(|p| Point::new(p.x * factor, p.y * factor))
-            .collect();
-        let scaled_geometry = geometry(&scaled, &reconstruct(&scaled).unwrap(), |p| {
-            Point::new(p.x / factor, p.y / factor)
-        });
-
-        for (what, other) in [
-            ("shuffled", &shuffled_geometry),
-            ("translated", &moved_geometry),
-            ("scaled", &scaled_geometry),
-        ] {
-            assert_eq!(
-                original.edges, other.edges,
-                "seed {seed}: {what} input gives another edge set"
-            );
-            assert_eq!(
-                original.outliers, other.outliers,
-                "seed {seed}: {what} input gives other outliers"
-            );
-            assert_eq!(
-                original.curves, other.curves,
-                "seed {seed}: {what} input gives the curves in another order or orientation"
+        for (name, method) in METHODS {
+            invariant_under_order_translation_and_scale(
+                &format!("{name}, seed {seed}"),
+                method,
+                &points,
+                &mut random,
             );
         }
+    }
+}
+
+/// Checks that `method` gives the same curves on `points` shuffled, translated by integers and
+/// scaled by a power of two.
+fn invariant_under_order_translation_and_scale(
+    seed: &str,
+    method: Method,
+    points: &[Point],
+    random: &mut SplitMix64,
+) {
+    let original = geometry(points, &method(points).unwrap(), |p| p);
+
+    let mut shuffled = points.to_vec();
+    random.shuffle(&mut shuffled);
+    let shuffled_geometry = geometry(&shuffled, &method(&shuffled).unwrap(), |p| p);
+
+    let shift = (
+        random.below(2001) as f64 - 1000.0,
+        random.below(2001) as f64 - 1000.0,
+    );
+    let moved: Vec<Point> = points
+        .iter()
+        .map(|p| Point::new(p.x + shift.0, p.y + shift.1))
+        .collect();
+    let moved_geometry = geometry(&moved, &method(&moved).unwrap(), |p| {
+        Point::new(p.x - shift.0, p.y - shift.1)
+    });
+
+    let factor = 2f64.powi(random.below(9) as i32 - 4);
+    let scaled: Vec<Point> = points
+        .iter()
+        .map(|p| Point::new(p.x * factor, p.y * factor))
+        .collect();
+    let scaled_geometry = geometry(&scaled, &method(&scaled).unwrap(), |p| {
+        Point::new(p.x / factor, p.y / factor)
+    });
+
+    for (what, other) in [
+        ("shuffled", &shuffled_geometry),
+        ("translated", &moved_geometry),
+        ("scaled", &scaled_geometry),
+    ] {
+        assert_eq!(
+            original.edges, other.edges,
+            "{seed}: {what} input gives another edge set"
+        );
+        assert_eq!(
+            original.outliers, other.outliers,
+            "{seed}: {what} input gives other outliers"
+        );
+        assert_eq!(
+            original.curves, other.curves,
+            "{seed}: {what} input gives the curves in another order or orientation"
+        );
     }
 }

@@ -51,7 +51,7 @@ def trace(
 
     The options are those of ``crawltrace trace`` (``--stroke-width`` is ``stroke_width``):
     ``threshold`` (0–255) or ``adaptive``, ``invert``, ``spacing`` and ``simplify`` (pixels),
-    ``method`` (``"strokes"`` or ``"points"``), ``smooth``, ``stroke_width`` and ``color`` (of
+    ``method`` (``"strokes"``, ``"points"`` or ``"paper"``), ``smooth``, ``stroke_width`` and ``color`` (of
     the SVG), and the physical size: ``dpi`` (default: the file's own density, else 96), or
     ``size`` of the longer side (``"210mm"``, ``"8in"``), written in ``units`` (``"mm"`` or
     ``"in"``; default the unit of ``size``, else mm).

@@ -64,7 +64,8 @@ impl TraceArguments<'_> {
             method: match self.method {
                 "strokes" => Method::Strokes,
                 "points" => Method::Points,
-                _ => return Err("method: must be \"strokes\" or \"points\"".into()),
+                "paper" => Method::Paper,
+                _ => return Err("method: must be \"strokes\", \"points\" or \"paper\"".into()),
             },
             keep_stages: false,
         };

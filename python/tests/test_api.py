@@ -137,7 +137,7 @@ def test_bad_files_and_data_are_one_line_errors(tmp_path):
         ({"spacing": 0}, "spacing: must be a positive number"),
         ({"stroke_width": float("nan")}, "stroke_width: must be a positive number"),
         ({"simplify": -0.5}, "simplify: must be zero or a positive number"),
-        ({"method": "crawl"}, 'method: must be "strokes" or "points"'),
+        ({"method": "crawl"}, 'method: must be "strokes", "points" or "paper"'),
         ({"color": 'red" onload="x'}, "color: must be an SVG colour"),
         ({"dpi": 0}, "dpi: must be a positive number"),
         ({"dpi": -300}, "dpi: must be a positive number"),

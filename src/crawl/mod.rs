@@ -3,13 +3,15 @@
 //!
 //! [`algorithm`] is the paper's crawl on any [`neighbours::NeighbourGraph`] (the Delaunay
 //! triangulation is [`neighbours::NeighbourGraph::delaunay`]); [`reconstruct`] runs it on a point
-//! set with the paper's closing rule; [`strokes`] runs it on sampled pen strokes, with bridges
-//! across the gaps between their free ends.
+//! set with the paper's closing rule; [`robust`] is a crawl for point sets beyond the paper (stray
+//! points, sharp corners, open ends, thin parts; issue 10, `docs/point-sets.md`); [`strokes`] runs
+//! the crawl on sampled pen strokes, with bridges across the gaps between their free ends.
 
 pub mod algorithm;
 mod bridges;
 pub mod neighbours;
 pub mod reconstruct;
+pub mod robust;
 pub mod strokes;
 pub mod tips;
 mod triangulation;

@@ -92,6 +92,23 @@ pub fn reconstruct(points: &[Point]) -> Result<Reconstruction, ReconstructError>
     Ok(canonical.into_reconstruction(chains))
 }
 
+/// Reconstructs curves like [`reconstruct`], with `crawler` in place of the paper's crawl: the same
+/// canonical points (distinct, in lexicographic order), Delaunay graph and output conventions.
+/// Chains of fewer than three points are dropped, their points reported as outliers.
+///
+/// # Errors
+///
+/// As [`reconstruct`].
+pub fn reconstruct_with(
+    points: &[Point],
+    crawler: impl FnOnce(&[Point], &NeighbourGraph) -> Vec<Chain>,
+) -> Result<Reconstruction, ReconstructError> {
+    let canonical = CanonicalPoints::new(points)?;
+    let graph = NeighbourGraph::delaunay(&canonical.positions)?;
+    let chains = crawler(&canonical.positions, &graph);
+    Ok(canonical.into_reconstruction(chains))
+}
+
 /// The paper's closing rule: more than two edges, and one extremity is the other's nearest or
 /// second-nearest neighbour.
 ///

@@ -8,7 +8,8 @@
 //! does: within a stroke only the stroke's own edges are offered, and only the pen's lift-off
 //! points (free stroke ends) may be bridged, to each other, along Delaunay edges. The crawl then
 //! decides, with the paper's seeds, candidates, `d > d1` stop and a closing rule, how the strokes
-//! chain into shapes. [`Method::Points`] keeps the paper's plain crawl for comparison.
+//! chain into shapes. [`Method::Points`] crawls all samples as one point set with the robust crawl
+//! ([`super::robust`]), and [`Method::Paper`] with the paper's plain crawl, for comparison.
 
 use std::collections::{HashMap, HashSet, VecDeque};
 
@@ -16,7 +17,8 @@ use kurbo::{Point, Vec2};
 
 use super::algorithm::Chain;
 use super::bridges::{match_gap_bridges, BridgeableEnd};
-use super::reconstruct::{self, canonical_orientation};
+use super::reconstruct::{self, canonical_orientation, Reconstruction};
+use super::ReconstructError;
 use crate::geometry::polyline::polyline_length;
 use crate::geometry::Polyline;
 use crate::strokes::{Stroke, StrokeEnd};
@@ -27,9 +29,12 @@ pub enum Method {
     /// The crawl on stroke edges and gap bridges (the default; see the module documentation).
     #[default]
     Strokes,
+    /// The robust point-set crawl ([`super::robust`]) on the Delaunay triangulation of all
+    /// samples, ignoring which stroke they came from.
+    Points,
     /// The paper's crawl on the Delaunay triangulation of all samples, ignoring which stroke
     /// they came from.
-    Points,
+    Paper,
 }
 
 /// DECISION: a curve shorter than two pen widths is a stray mark (a speck that survived cleaning, a
@@ -136,7 +141,8 @@ pub fn connect(
     let end_extension = end_extension(stroke_width);
     let curves = match method {
         Method::Strokes => connect_strokes(strokes, spacing, stroke_width),
-        Method::Points => crawl_all_samples(strokes),
+        Method::Points => crawl_all_samples(strokes, super::robust::reconstruct),
+        Method::Paper => crawl_all_samples(strokes, reconstruct::reconstruct),
     };
     let attached: Vec<Point> = strokes
         .iter()
@@ -174,13 +180,16 @@ fn extend_end(points: &mut [Point], at_last: bool, extension: f64, attached: &[P
     }
 }
 
-/// The paper's approach: one point set, one crawl.
-fn crawl_all_samples(strokes: &[Stroke]) -> Vec<Polyline> {
+/// The paper's approach: one point set, one crawl (`reconstruct_points`).
+fn crawl_all_samples(
+    strokes: &[Stroke],
+    reconstruct_points: fn(&[Point]) -> Result<Reconstruction, ReconstructError>,
+) -> Vec<Polyline> {
     let points: Vec<Point> = strokes
         .iter()
         .flat_map(|s| s.line.points.iter().copied())
         .collect();
-    let Ok(result) = reconstruct::reconstruct(&points) else {
+    let Ok(result) = reconstruct_points(&points) else {
         return Vec::new(); // pixel coordinates are always finite and in range
     };
     result
@@ -645,9 +654,11 @@ mod tests {
     }
 
     #[test]
-    fn the_paper_method_also_runs() {
+    fn the_point_set_methods_also_run() {
         let strokes = skip_stroke_circle((100.0, 100.0), 60.0, 40.0, 3.0);
-        let curves = connect(&strokes, Method::Points, 4.0, 3.0);
-        assert!(!curves.is_empty());
+        for method in [Method::Points, Method::Paper] {
+            let curves = connect(&strokes, method, 4.0, 3.0);
+            assert!(!curves.is_empty(), "{method:?}");
+        }
     }
 }

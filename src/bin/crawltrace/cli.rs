@@ -67,6 +67,19 @@ pub struct PointsArgs {
     /// In SVG output, draw every input point as a dot over the curves.
     #[arg(long)]
     pub show_points: bool,
+    /// How points are connected: `robust` (default) handles stray points, sharp corners, open
+    /// ends and thin parts; `paper` is the paper's crawl as published.
+    #[arg(long, value_enum, default_value_t = PointsMethod::Robust)]
+    pub method: PointsMethod,
+}
+
+/// `--method` values of `crawltrace points`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum PointsMethod {
+    /// The robust crawl (`docs/point-sets.md`).
+    Robust,
+    /// The paper's crawl (Parakkat & Muthuganapathy 2016, Algorithm 1).
+    Paper,
 }
 
 /// Output formats of `crawltrace points`.
@@ -126,7 +139,7 @@ pub struct TraceArgs {
     #[arg(long, value_name = "PX", value_parser = positive_number, help_heading = "Reconstruction")]
     pub spacing: Option<f64>,
     /// How samples are connected: `strokes` (default) knows which samples the pen drew together;
-    /// `points` is the paper's plain crawl on all samples.
+    /// `points` is the robust point-set crawl on all samples; `paper` the paper's plain crawl.
     #[arg(long, value_enum, default_value_t = MethodArg::Strokes, help_heading = "Reconstruction")]
     pub method: MethodArg,
 
@@ -222,8 +235,10 @@ pub enum UnitsArg {
 pub enum MethodArg {
     /// Crawl on stroke edges and gap bridges (default).
     Strokes,
-    /// The paper's crawl on the Delaunay triangulation of all samples.
+    /// The robust point-set crawl on the Delaunay triangulation of all samples.
     Points,
+    /// The paper's crawl on the Delaunay triangulation of all samples.
+    Paper,
 }
 
 impl TraceArgs {
@@ -246,6 +261,7 @@ impl TraceArgs {
             method: match self.method {
                 MethodArg::Strokes => Method::Strokes,
                 MethodArg::Points => Method::Points,
+                MethodArg::Paper => Method::Paper,
             },
             keep_stages: self.debug.is_some(),
         }

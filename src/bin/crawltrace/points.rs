@@ -6,9 +6,12 @@ use std::path::{Path, PathBuf};
 
 use crawltrace::files::describe_io;
 use crawltrace::stages::points::write::{to_drawing, write_json};
-use crawltrace::{parse_points, reconstruct, to_svg, PointFile, ReconstructError, Reconstruction};
+use crawltrace::{
+    parse_points, reconstruct, reconstruct_robust, to_svg, PointFile, ReconstructError,
+    Reconstruction,
+};
 
-use crate::cli::{PointsArgs, PointsFormat};
+use crate::cli::{PointsArgs, PointsFormat, PointsMethod};
 use crate::exit::{Exit, Failure};
 use crate::files::{has_extension, refuse_to_overwrite_input, save, write_stdout};
 
@@ -25,7 +28,11 @@ pub fn run(args: PointsArgs) -> Result<Exit, Failure> {
         refuse_to_overwrite_input(path, &[&args.input])?;
     }
     let file = read_point_file(&args.input, from_stdin, &input_name)?;
-    let reconstruction = reconstruct(&file.points).map_err(|e| {
+    let reconstruction = match args.method {
+        PointsMethod::Robust => reconstruct_robust(&file.points),
+        PointsMethod::Paper => reconstruct(&file.points),
+    };
+    let reconstruction = reconstruction.map_err(|e| {
         let line = match e {
             ReconstructError::NotFinite { index } | ReconstructError::OutOfRange { index, .. } => {
                 file.lines[index]
