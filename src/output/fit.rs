@@ -81,6 +81,12 @@ const TOLERANCE_IN_PEN_WIDTHS: f64 = 0.25;
 /// skeleton's pixel steps.
 const TOLERANCE_FLOOR_PX: f64 = 0.5;
 
+/// DECISION: the smallest tolerance a caller may ask for: 0.01 px, the resolution of the SVG's
+/// coordinates (two decimals). A smaller one changes no output byte, only the work (each halving
+/// of the tolerance splits the curves into more pieces). A smaller tolerance asked for is raised
+/// to it.
+pub const MIN_TOLERANCE_PX: f64 = 0.01;
+
 /// The default [`FitOptions::tolerance`] for a pen of `stroke_width` pixels: a quarter of the pen
 /// width, at least 0.5 px.
 pub fn default_tolerance(stroke_width: f64) -> f64 {
@@ -92,8 +98,13 @@ pub fn default_tolerance(stroke_width: f64) -> f64 {
 /// turn by far less; one noisy sample may exceed it at one scale but rarely at both.
 const CORNER_TURN_DEGREES: f64 = 50.0;
 
-/// Turns a polyline into a path; closed polylines end with `ClosePath`.
+/// Turns a polyline into a path; closed polylines end with `ClosePath`. A tolerance below
+/// [`MIN_TOLERANCE_PX`] (or not a number) is raised to it.
 pub fn fit_curve(curve: &Polyline, options: &FitOptions) -> BezPath {
+    let options = &FitOptions {
+        tolerance: options.tolerance.max(MIN_TOLERANCE_PX),
+        ..*options
+    };
     let points = &curve.points;
     let closed = curve.closed && points.len() > 2;
     if !options.smooth || points.len() < 3 {

@@ -6,4 +6,5 @@ pub mod binarize;
 pub mod bitmap;
 pub mod clean;
 pub mod decode;
+mod limits;
 pub mod thin;

@@ -18,7 +18,9 @@ use crate::raster::bitmap::Bitmap;
 use graph::SkeletonGraph;
 
 pub(crate) use sample::MIN_LOOP_SAMPLES;
-pub use sample::{default_spacing, sample_strokes, simplification_tolerance};
+pub use sample::{
+    default_spacing, minimum_spacing, sample_strokes, simplification_tolerance, MIN_SPACING_PX,
+};
 
 /// How one end of a [`Stroke`] ends.
 #[derive(Clone, Copy, Debug, PartialEq)]
