@@ -88,7 +88,7 @@ fn printable_bytes_of(path: &Path) -> String {
 }
 
 /// The folder a file path lives in; `.` for a bare file name.
-pub(crate) fn parent_folder(path: &Path) -> &Path {
+pub fn parent_folder(path: &Path) -> &Path {
     match path.parent() {
         Some(parent) if !parent.as_os_str().is_empty() => parent,
         _ => Path::new("."),

@@ -63,8 +63,8 @@ impl OutputPlan {
     /// # Errors
     ///
     /// [`OutputRefusal::Input`] for one of the inputs, [`OutputRefusal::AlsoWritten`] for a file
-    /// already claimed under another name (claiming the same name twice is allowed: one output
-    /// written once), [`OutputRefusal::NotAFile`] for a folder, device, named pipe or socket.
+    /// already claimed (under any name), [`OutputRefusal::NotAFile`] for a folder, device, named
+    /// pipe or socket.
     pub fn claim(&mut self, output: &Path) -> Result<(), OutputRefusal> {
         check_kind(output)?;
         let resolved = self.resolve(output);
@@ -72,10 +72,9 @@ impl OutputPlan {
             return Err(OutputRefusal::Input);
         }
         match self.claimed.get(&resolved) {
-            Some(other) if other != output => Err(OutputRefusal::AlsoWritten {
+            Some(other) => Err(OutputRefusal::AlsoWritten {
                 other: other.clone(),
             }),
-            Some(_) => Ok(()),
             None => {
                 self.claimed.insert(resolved, output.to_path_buf());
                 Ok(())
@@ -197,7 +196,12 @@ mod tests {
         let mut plan = OutputPlan::new([]);
         let report = folder.path().join("out/report.jsonl");
         assert_eq!(plan.claim(&report), Ok(()));
-        assert_eq!(plan.claim(&report), Ok(()), "one output claimed twice");
+        assert_eq!(
+            plan.claim(&report),
+            Err(OutputRefusal::AlsoWritten {
+                other: report.clone()
+            })
+        );
         fs::create_dir(folder.path().join("sub")).unwrap();
         let other_name = folder.path().join("sub/../out/report.jsonl");
         assert_eq!(

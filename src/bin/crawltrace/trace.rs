@@ -5,13 +5,13 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use crawltrace::batch::{self, trace_file_to_svg, BatchOptions};
-use crawltrace::files::describe_io;
-use crawltrace::stages::debug::debug_images;
+use crawltrace::files::{describe_io, printable, OutputPlan};
+use crawltrace::stages::debug::{debug_images, PICTURE_NAMES};
 use crawltrace::{to_svg, trace_file, TraceOptions, Traced};
 
 use crate::cli::TraceArgs;
 use crate::exit::{Exit, Failure};
-use crate::files::{png_bytes, refuse_to_overwrite_input, save, write_stdout};
+use crate::files::{claim_output, png_bytes, save, write_stdout};
 
 pub fn run(args: TraceArgs) -> Result<Exit, Failure> {
     let options = args.trace_options();
@@ -25,39 +25,48 @@ pub fn run(args: TraceArgs) -> Result<Exit, Failure> {
     }
 }
 
-/// Traces one image into one SVG file (or standard output).
+/// Traces one image into one SVG file (or standard output). Every output (the SVG and the
+/// `--debug` pictures) is checked before the work starts.
 fn run_one(args: &TraceArgs, input: &Path, options: &TraceOptions) -> Result<Exit, Failure> {
     let started = Instant::now();
-    let traced = trace_file(input, options).map_err(|e| Failure::new(input, e))?;
-    let text = to_svg(&traced.drawing);
     let output = match &args.output {
         Some(path) if path.as_os_str() == "-" => None,
         Some(path) => Some(path.clone()),
         None => Some(input.with_extension("svg")),
     };
-    match &output {
-        Some(path) => {
-            refuse_to_overwrite_input(path, &[input])?;
-            save(path, text.as_bytes())?;
+    let mut plan = OutputPlan::new([input]);
+    if let Some(path) = &output {
+        claim_output(&mut plan, path)?;
+    }
+    if let Some(folder) = &args.debug {
+        for name in PICTURE_NAMES {
+            claim_output(&mut plan, &folder.join(name))?;
         }
+    }
+    let traced = trace_file(input, options).map_err(|e| Failure::new(input, e))?;
+    let text = to_svg(&traced.drawing);
+    match &output {
+        Some(path) => save(path, text.as_bytes())?,
         None => write_stdout(text.as_bytes())?,
     }
     if let Some(folder) = &args.debug {
-        write_debug_pictures(folder, &traced, &text)?;
+        // The SVG is written: a failure now is not "nothing ran".
+        write_debug_pictures(folder, &traced, &text)
+            .map_err(|failure| failure.with_exit(Exit::PartlyWritten))?;
     }
     if !args.quiet {
         let curves = &traced.drawing.paths;
         let closed = curves.iter().filter(|c| c.closed).count();
         eprintln!(
             "{}: {} curve(s), {} closed, pen {:.1} px, {:.2} s{}",
-            input.display(),
+            printable(input),
             curves.len(),
             closed,
             traced.report.stroke_width,
             started.elapsed().as_secs_f64(),
             output
                 .as_ref()
-                .map(|o| format!(" → {}", o.display()))
+                .map(|o| format!(" → {}", printable(o)))
                 .unwrap_or_default(),
         );
     }
@@ -98,6 +107,10 @@ fn run_batch(args: &TraceArgs, options: &TraceOptions) -> Result<Exit, Failure> 
         trace_file_to_svg(path, options)
     })
     .map_err(Failure::general)?;
+    if let Some(error) = &summary.report_error {
+        // After the summary line: the outputs are written, only the report is missing.
+        Failure::general(error).report();
+    }
     Ok(Exit::of_batch(&summary))
 }
 
