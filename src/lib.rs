@@ -12,7 +12,7 @@
 //! | write SVG | [`to_svg`] | the SVG text of a [`Drawing`] |
 //! | reconstruct curves from points | [`reconstruct()`] | [`Reconstruction`]: chains of input indices, open or closed, and outliers |
 //! | read a point file | [`parse_points`] | [`PointFile`]: the points and their line numbers |
-//! | render SVG to pixels | [`render_svg`] | an RGBA image |
+//! | render SVG to pixels | [`render_svg`], [`render_svg_with`] | an RGBA image |
 //!
 //! Folders of images are traced by [`batch`]; every stage of the pipeline is in [`stages`], for
 //! benchmarks, tests and front ends that run a stage on its own.
@@ -50,7 +50,9 @@ pub use kurbo::Point;
 pub use crawl::reconstruct::{reconstruct, Curve, MergedDuplicate, Reconstruction};
 pub use crawl::strokes::Method;
 pub use crawl::ReconstructError;
-pub use output::render::{render_svg, RenderError};
+pub use output::render::{
+    prepare_render, render_svg, render_svg_with, PreparedRender, RenderError, RenderOptions,
+};
 pub use output::svg::{to_svg, CurvePath, Drawing};
 pub use points::read::{parse_points, PointFile, PointFileError};
 pub use raster::binarize::{BinarizeOptions, ThresholdMethod};

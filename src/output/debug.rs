@@ -7,7 +7,7 @@ use kurbo::Point;
 
 use crate::crawl::neighbours::NeighbourGraph;
 use crate::geometry::Polyline;
-use crate::output::render::render_svg;
+use crate::output::render::{render_svg_with, RenderOptions};
 use crate::raster::bitmap::Bitmap;
 use crate::strokes::{Stroke, StrokeEnd};
 
@@ -191,7 +191,12 @@ fn delaunay_picture(stages: &Stages) -> RgbImage {
 fn result_picture(stages: &Stages, svg: &str) -> RgbImage {
     let (width, height) = stages.gray.dimensions();
     let mut result = faded(&stages.gray);
-    if let Ok(rendered) = render_svg(&recolor(svg), 1.0) {
+    // Our own SVG, the size of the input: the input's size is its canvas limit.
+    let options = RenderOptions {
+        scale: 1.0,
+        max_pixels: u64::from(width) * u64::from(height),
+    };
+    if let Ok(rendered) = render_svg_with(&recolor(svg), &options) {
         for (x, y, pixel) in rendered.enumerate_pixels() {
             if x < width && y < height && pixel.0[0] < RESULT_PAPER_LEVEL {
                 // The rendered paths are pure blue on white: blend by their coverage.

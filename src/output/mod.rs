@@ -4,4 +4,5 @@
 pub mod debug;
 pub mod fit;
 pub mod render;
+mod render_budget;
 pub mod svg;
