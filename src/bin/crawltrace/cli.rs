@@ -7,6 +7,7 @@ use std::path::PathBuf;
 use clap::{Parser, Subcommand, ValueEnum};
 use crawltrace::stages::decode::DEFAULT_MAX_PIXELS;
 use crawltrace::stages::fit::MIN_TOLERANCE_PX;
+use crawltrace::stages::render::DEFAULT_MAX_PIXELS as DEFAULT_RENDER_PIXELS;
 use crawltrace::stages::strokes::MIN_SPACING_PX;
 use crawltrace::{BinarizeOptions, Method, ThresholdMethod, TraceOptions};
 
@@ -64,8 +65,15 @@ pub struct RenderArgs {
     #[arg(short, long, value_name = "PNG")]
     pub output: PathBuf,
     /// Pixels per SVG pixel.
-    #[arg(long, default_value_t = 1.0)]
+    #[arg(long, default_value_t = 1.0, value_parser = render_scale)]
     pub scale: f32,
+    /// Refuse canvases with more pixels than this (default: 64000000, a 4000 × 3000 page at
+    /// scale 2).
+    #[arg(long, value_name = "N", default_value_t = DEFAULT_RENDER_PIXELS, value_parser = pixel_count)]
+    pub max_pixels: u64,
+    /// Internal: be the sandboxed renderer (SVG on standard input, PNG on standard output).
+    #[arg(long, hide = true)]
+    pub in_sandbox: bool,
 }
 
 /// Arguments of `crawltrace trace`.
@@ -230,6 +238,11 @@ fn positive_number(text: &str) -> Result<f64, ValueError> {
     } else {
         Err(OptionCheck::NotPositive.into())
     }
+}
+
+/// `--scale`: a finite number greater than zero.
+fn render_scale(text: &str) -> Result<f32, ValueError> {
+    positive_number(text).map(|scale| scale as f32)
 }
 
 /// A finite number of at least `minimum`.

@@ -9,6 +9,7 @@ mod exit;
 mod files;
 mod points;
 mod render;
+mod sandbox;
 mod trace;
 
 use std::error::Error as _;
