@@ -8,7 +8,7 @@ use std::panic::{catch_unwind, AssertUnwindSafe};
 
 use image::RgbaImage;
 
-use super::render_budget::{estimate, Cost};
+use super::render_budget::{estimate, oversized_arc, Cost, MAX_ARC_CURVES};
 
 /// Why an SVG could not be rasterized.
 #[derive(Debug, thiserror::Error)]
@@ -47,6 +47,14 @@ pub enum RenderError {
         operations: f64,
         /// The estimated layer memory, in megabytes.
         megabytes: f64,
+    },
+    /// An elliptical arc so large that usvg would take unbounded time to turn it into curves.
+    #[error("refusing to render: an arc of radius {radius:.1e} would become {curves:.1e} curves (at most {:.0e})", MAX_ARC_CURVES)]
+    Arc {
+        /// Its largest radius, in user units.
+        radius: f64,
+        /// The curves usvg would make of it.
+        curves: f64,
     },
     /// usvg or resvg panicked on it (a bug upstream, contained: see the README's known limits).
     #[error("the renderer failed on it: {0}")]
@@ -139,13 +147,15 @@ pub struct PreparedRender {
 /// that a caller can bound the render itself by what it will take (`crawltrace render` sets its
 /// sandbox's time and memory from it).
 ///
-/// Parsing is not bounded: usvg turns an arc of radius 10³⁸ into millions of curves before
-/// anything can be checked (see the README's known limits); `crawltrace render` runs it in a
-/// separate process with time and memory limits.
+/// Arcs that usvg would turn into more than [`MAX_ARC_CURVES`] curves are refused before it
+/// parses (an arc of radius 10³⁸ never finished). The rest of parsing is not bounded here: a
+/// document of nested `<use>` elements expands to as many elements as it names (see the README's
+/// known limits); `crawltrace render` runs it in a separate process with time and memory limits.
 ///
 /// # Errors
 ///
 /// [`RenderError::Parse`] when the text is not an SVG document usvg reads,
+/// [`RenderError::Arc`] when an arc is too large to parse in bounded time,
 /// [`RenderError::Size`] when the raster would be empty or the scale is not a positive number,
 /// [`RenderError::Canvas`] when it would have more than [`RenderOptions::max_pixels`], and
 /// [`RenderError::TooCostly`] when its layers, filters and pattern tiles would need more than
@@ -204,8 +214,12 @@ impl PreparedRender {
     }
 }
 
-/// Parses `svg` without reading any file: every `<image>` resolves to nothing.
+/// Parses `svg` without reading any file: every `<image>` resolves to nothing. Arcs that usvg
+/// would spend unbounded time on are refused first.
 fn parse(svg: &str) -> Result<usvg::Tree, RenderError> {
+    if let Some((radius, curves)) = oversized_arc(svg) {
+        return Err(RenderError::Arc { radius, curves });
+    }
     let options = usvg::Options {
         resources_dir: None,
         image_href_resolver: usvg::ImageHrefResolver {
@@ -393,6 +407,18 @@ mod tests {
             Ok(_) | Err(RenderError::Crashed(_)) => {}
             Err(other) => panic!("{other}"),
         }
+    }
+
+    /// Found by the fuzz harness (svg, seed 1, case 182): one arc of radii 65535 and 10³⁸ kept
+    /// usvg's parser busy for minutes (its work grows with the square of the curves it makes).
+    #[test]
+    fn a_huge_arc_is_refused_before_parsing() {
+        let svg =
+            document(r#"<path d="M10 10 A65535 1e38 0 1 1 190 190" stroke="black" fill="red"/>"#);
+        let error = render_svg(&svg, 1.0).unwrap_err();
+        assert!(matches!(error, RenderError::Arc { .. }), "{error}");
+        let fine = document(r#"<path d="M10 10 A65535 1e6 0 1 1 190 190" fill="red"/>"#);
+        assert!(render_svg(&fine, 1.0).is_ok());
     }
 
     /// Layers nested deeply hold a pixmap each at once: their memory is counted.

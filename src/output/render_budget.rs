@@ -212,3 +212,136 @@ impl Model {
             .map_or(0.0, |r| f64::from(r.width()) * f64::from(r.height()))
     }
 }
+
+/// DECISION: the most cubic curves usvg may make of one elliptical arc: 10 000. usvg 0.49 turns
+/// an arc into kurbo's curves at a tolerance of 0.1 and its work grows with the square of their
+/// number (an arc of 32 000 curves took 0.7 s to parse, one of 150 000 took 13 s, and one of
+/// radius 10³⁸ never finished). 10 000 curves is an arc of radius about 10²³, far beyond any
+/// drawing, and parses in 0.1 s.
+pub(super) const MAX_ARC_CURVES: f64 = 10_000.0;
+
+/// The tolerance usvg 0.49 gives kurbo for arcs (`parser/shapes.rs`).
+const USVG_ARC_TOLERANCE: f64 = 0.1;
+
+/// The elliptical arc of `svg`'s path data that usvg would turn into the most curves: its
+/// largest radius and that number (kurbo's count for a whole turn, an upper bound), if any arc
+/// would need more than [`MAX_ARC_CURVES`]. Read before usvg parses anything, because the parse
+/// itself is what does not end; `None` also when the text is not XML (usvg then says why).
+pub(super) fn oversized_arc(svg: &str) -> Option<(f64, f64)> {
+    let options = usvg::roxmltree::ParsingOptions {
+        allow_dtd: true,
+        ..Default::default()
+    };
+    let document = usvg::roxmltree::Document::parse_with_options(svg, options).ok()?;
+    let largest = document
+        .descendants()
+        .filter_map(|node| node.attribute("d"))
+        .map(largest_arc_radius)
+        .fold(0.0, f64::max);
+    let curves = arc_curves(largest);
+    (curves > MAX_ARC_CURVES).then_some((largest, curves))
+}
+
+/// kurbo 0.13's number of cubic curves for a whole ellipse of largest radius `radius`
+/// (`Arc::append_iter`).
+fn arc_curves(radius: f64) -> f64 {
+    (1.1163 * radius / USVG_ARC_TOLERANCE)
+        .powf(1.0 / 6.0)
+        .max(4.0)
+}
+
+/// The largest radius (rx or ry) of the arc commands in path data `d`, 0 when it has none. The
+/// path grammar of SVG 1.1 (section 8.3.9), read just enough to know which numbers are radii:
+/// an arc takes seven arguments, the fourth and fifth one-character flags.
+fn largest_arc_radius(d: &str) -> f64 {
+    let bytes = d.as_bytes();
+    let (mut at, mut command, mut argument) = (0, b' ', 0usize);
+    let mut largest: f64 = 0.0;
+    while at < bytes.len() {
+        let byte = bytes[at];
+        if byte.is_ascii_alphabetic() && !matches!(byte, b'e' | b'E') {
+            (command, argument) = (byte.to_ascii_uppercase(), 0);
+            at += 1;
+        } else if byte.is_ascii_whitespace() || byte == b',' {
+            at += 1;
+        } else if command == b'A' && matches!(argument % 7, 3 | 4) {
+            // A flag: one character, with or without a separator after it.
+            at += 1;
+            argument += 1;
+        } else {
+            let end = number_end(bytes, at);
+            if end == at {
+                at += 1;
+                continue;
+            }
+            if command == b'A' && argument % 7 < 2 {
+                let value: f64 = d[at..end].parse().unwrap_or(0.0);
+                largest = largest.max(value.abs());
+            }
+            at = end;
+            argument += 1;
+        }
+    }
+    largest
+}
+
+/// Where the number starting at `start` ends (`start` itself when none starts there): a sign,
+/// digits with at most one point, then an exponent.
+fn number_end(bytes: &[u8], start: usize) -> usize {
+    let digits = |mut at: usize| {
+        while at < bytes.len() && bytes[at].is_ascii_digit() {
+            at += 1;
+        }
+        at
+    };
+    let mut at = start + usize::from(matches!(bytes[start], b'+' | b'-'));
+    let integer_end = digits(at);
+    let mut end = integer_end;
+    if end < bytes.len() && bytes[end] == b'.' {
+        end = digits(end + 1);
+    }
+    // A number needs a digit before or after its point.
+    if integer_end == at && end <= integer_end + 1 {
+        return start;
+    }
+    at = end;
+    if at < bytes.len() && matches!(bytes[at], b'e' | b'E') {
+        let mut exponent = at + 1;
+        exponent += usize::from(exponent < bytes.len() && matches!(bytes[exponent], b'+' | b'-'));
+        let exponent_end = digits(exponent);
+        if exponent_end > exponent {
+            end = exponent_end;
+        }
+    }
+    end
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn arc_radii_are_read_from_path_data() {
+        assert_eq!(largest_arc_radius("M10 10 A65535 1e38 0 1 1 190 190"), 1e38);
+        assert_eq!(largest_arc_radius("M0,0a5,7,0,1,0,3,4"), 7.0);
+        // Flags without separators, relative arcs repeated, other commands' numbers ignored.
+        assert_eq!(largest_arc_radius("M1e30 0 a2 3 0 11.5.5 4 1 0 015 6"), 4.0);
+        assert_eq!(largest_arc_radius("M0 0 L1e38 1e38 C1 2 3 4 5 6"), 0.0);
+        assert_eq!(largest_arc_radius("garbage A -1.5e2 .5"), 150.0);
+    }
+
+    #[test]
+    fn only_arcs_beyond_the_curve_limit_are_oversized() {
+        let svg = |radius: &str| {
+            format!(
+                r#"<svg xmlns="http://www.w3.org/2000/svg" width="9" height="9"><path d="M1 1 A{radius} 2 0 1 1 5 5"/></svg>"#
+            )
+        };
+        assert_eq!(oversized_arc(&svg("1e6")), None);
+        assert_eq!(oversized_arc(&svg("1e20")), None);
+        let (radius, curves) = oversized_arc(&svg("1e30")).unwrap();
+        assert_eq!(radius, 1e30);
+        assert!(curves > MAX_ARC_CURVES);
+        assert_eq!(oversized_arc("not xml"), None);
+    }
+}
