@@ -8,7 +8,9 @@ use std::panic::{catch_unwind, AssertUnwindSafe};
 
 use image::RgbaImage;
 
-use super::render_budget::{estimate, oversized_arc, Cost, MAX_ARC_CURVES};
+use super::render_budget::{
+    estimate, parse_hazard, Cost, ParseHazard, MAX_ARC_CURVES, MAX_USE_ELEMENTS,
+};
 
 /// Why an SVG could not be rasterized.
 #[derive(Debug, thiserror::Error)]
@@ -56,6 +58,15 @@ pub enum RenderError {
         /// The curves usvg would make of it.
         curves: f64,
     },
+    /// `<use>` elements that would copy content into more elements than parsing may make.
+    #[error(
+        "refusing to render: its <use> elements would add {elements:.1e} elements (at most {:.0e})",
+        MAX_USE_ELEMENTS
+    )]
+    Uses {
+        /// The elements the uses would add.
+        elements: f64,
+    },
     /// usvg or resvg panicked on it (a bug upstream, contained: see the README's known limits).
     #[error("the renderer failed on it: {0}")]
     Crashed(String),
@@ -71,9 +82,9 @@ pub const DEFAULT_MAX_PIXELS: u64 = 64_000_000;
 /// Our own SVGs at the largest canvas need about 10⁸.
 pub const MAX_OPERATIONS: f64 = 4e9;
 
-/// DECISION: the most memory the layers of a render may hold at once, beyond the canvas: 1 GB,
-/// four canvases of the largest size.
-pub const MAX_LAYER_BYTES: f64 = 1e9;
+/// DECISION: the most memory the layers of a render may hold at once, beyond the canvas: 256 MB,
+/// one canvas of the largest size, so that a render stays within about twice its canvas.
+pub const MAX_LAYER_BYTES: f64 = 256e6;
 
 /// How to render.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -147,15 +158,17 @@ pub struct PreparedRender {
 /// that a caller can bound the render itself by what it will take (`crawltrace render` sets its
 /// sandbox's time and memory from it).
 ///
-/// Arcs that usvg would turn into more than [`MAX_ARC_CURVES`] curves are refused before it
-/// parses (an arc of radius 10³⁸ never finished). The rest of parsing is not bounded here: a
-/// document of nested `<use>` elements expands to as many elements as it names (see the README's
-/// known limits); `crawltrace render` runs it in a separate process with time and memory limits.
+/// Arcs that usvg would turn into more than [`MAX_ARC_CURVES`] curves, and `<use>` elements
+/// that would add more than [`MAX_USE_ELEMENTS`] elements, are refused before usvg parses (an
+/// arc of radius 10³⁸ never finished; ten levels of ten uses make 10¹⁰ elements). Whatever else
+/// usvg might spend unbounded work on while parsing is not seen here (see the README's known
+/// limits); `crawltrace render` runs it in a separate process with time and memory limits.
 ///
 /// # Errors
 ///
 /// [`RenderError::Parse`] when the text is not an SVG document usvg reads,
-/// [`RenderError::Arc`] when an arc is too large to parse in bounded time,
+/// [`RenderError::Arc`] when an arc is too large to parse in bounded time, [`RenderError::Uses`]
+/// when `<use>` elements would expand beyond the limit,
 /// [`RenderError::Size`] when the raster would be empty or the scale is not a positive number,
 /// [`RenderError::Canvas`] when it would have more than [`RenderOptions::max_pixels`], and
 /// [`RenderError::TooCostly`] when its layers, filters and pattern tiles would need more than
@@ -217,8 +230,12 @@ impl PreparedRender {
 /// Parses `svg` without reading any file: every `<image>` resolves to nothing. Arcs that usvg
 /// would spend unbounded time on are refused first.
 fn parse(svg: &str) -> Result<usvg::Tree, RenderError> {
-    if let Some((radius, curves)) = oversized_arc(svg) {
-        return Err(RenderError::Arc { radius, curves });
+    match parse_hazard(svg) {
+        Some(ParseHazard::Arc { radius, curves }) => {
+            return Err(RenderError::Arc { radius, curves })
+        }
+        Some(ParseHazard::Uses { elements }) => return Err(RenderError::Uses { elements }),
+        None => {}
     }
     let options = usvg::Options {
         resources_dir: None,

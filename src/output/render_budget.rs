@@ -223,23 +223,83 @@ pub(super) const MAX_ARC_CURVES: f64 = 10_000.0;
 /// The tolerance usvg 0.49 gives kurbo for arcs (`parser/shapes.rs`).
 const USVG_ARC_TOLERANCE: f64 = 0.1;
 
-/// The elliptical arc of `svg`'s path data that usvg would turn into the most curves: its
-/// largest radius and that number (kurbo's count for a whole turn, an upper bound), if any arc
-/// would need more than [`MAX_ARC_CURVES`]. Read before usvg parses anything, because the parse
-/// itself is what does not end; `None` also when the text is not XML (usvg then says why).
-pub(super) fn oversized_arc(svg: &str) -> Option<(f64, f64)> {
+/// DECISION: the most elements that `<use>` may add to a document beyond its own: 100 000, the
+/// size of a large drawing. usvg copies the referenced content for every `<use>`, so ten levels of
+/// ten uses each make 10¹⁰ elements from 3 kB of text; each costs about a kilobyte once parsed.
+pub(super) const MAX_USE_ELEMENTS: f64 = 100_000.0;
+
+/// What makes usvg's parse itself unbounded, found before it runs.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) enum ParseHazard {
+    /// An arc of this largest radius would become this many curves (over [`MAX_ARC_CURVES`]).
+    Arc { radius: f64, curves: f64 },
+    /// `<use>` elements would add this many elements (over [`MAX_USE_ELEMENTS`]).
+    Uses { elements: f64 },
+}
+
+/// Reads `svg` with roxmltree (as usvg will) and finds what usvg would spend unbounded time or
+/// memory on: an elliptical arc it would turn into too many curves, or `<use>` elements that
+/// copy content into too many elements. Checked before usvg parses anything, because the parse
+/// is what does not end; `None` also when the text is not XML (usvg then says why).
+pub(super) fn parse_hazard(svg: &str) -> Option<ParseHazard> {
     let options = usvg::roxmltree::ParsingOptions {
         allow_dtd: true,
         ..Default::default()
     };
     let document = usvg::roxmltree::Document::parse_with_options(svg, options).ok()?;
-    let largest = document
+    let radius = document
         .descendants()
         .filter_map(|node| node.attribute("d"))
         .map(largest_arc_radius)
         .fold(0.0, f64::max);
-    let curves = arc_curves(largest);
-    (curves > MAX_ARC_CURVES).then_some((largest, curves))
+    let curves = arc_curves(radius);
+    if curves > MAX_ARC_CURVES {
+        return Some(ParseHazard::Arc { radius, curves });
+    }
+    let own = document.descendants().filter(|n| n.is_element()).count() as f64;
+    let elements = expanded_elements(&document) - own;
+    (elements > MAX_USE_ELEMENTS).then_some(ParseHazard::Uses { elements })
+}
+
+/// The elements of `document` once every `<use>` is replaced by a copy of what it references
+/// (recursive references count once, as usvg drops them), counted without expanding: each
+/// element's count is computed once, children and use targets first, on an explicit stack (use
+/// chains may be longer than the call stack is deep).
+fn expanded_elements(document: &usvg::roxmltree::Document) -> f64 {
+    use std::collections::{HashMap, HashSet};
+    const XLINK: &str = "http://www.w3.org/1999/xlink";
+    let by_id: HashMap<&str, usvg::roxmltree::Node> = document
+        .descendants()
+        .filter_map(|node| Some((node.attribute("id")?, node)))
+        .collect();
+    let parts = |node: usvg::roxmltree::Node| -> Vec<usvg::roxmltree::NodeId> {
+        let href = node.attribute((XLINK, "href")).or(node.attribute("href"));
+        let target = href
+            .filter(|_| node.has_tag_name("use"))
+            .and_then(|href| by_id.get(href.strip_prefix('#')?).copied());
+        let children = node.children().filter(|child| child.is_element());
+        children.chain(target).map(|part| part.id()).collect()
+    };
+    let mut counts: HashMap<usvg::roxmltree::NodeId, f64> = HashMap::new();
+    let mut open = HashSet::new();
+    let root = document.root_element().id();
+    let mut stack = vec![(root, false)];
+    while let Some((id, parts_done)) = stack.pop() {
+        if counts.contains_key(&id) {
+            continue;
+        }
+        let node = document.get_node(id).expect("ids come from this document");
+        if parts_done {
+            let total: f64 = parts(node).iter().filter_map(|part| counts.get(part)).sum();
+            counts.insert(id, 1.0 + total);
+            open.remove(&id);
+        } else if open.insert(id) {
+            stack.push((id, true));
+            let pending = parts(node).into_iter().filter(|part| !open.contains(part));
+            stack.extend(pending.map(|part| (part, false)));
+        }
+    }
+    counts.get(&root).copied().unwrap_or(0.0)
 }
 
 /// kurbo 0.13's number of cubic curves for a whole ellipse of largest radius `radius`
@@ -331,17 +391,50 @@ mod tests {
     }
 
     #[test]
-    fn only_arcs_beyond_the_curve_limit_are_oversized() {
+    fn only_arcs_beyond_the_curve_limit_are_hazards() {
         let svg = |radius: &str| {
             format!(
                 r#"<svg xmlns="http://www.w3.org/2000/svg" width="9" height="9"><path d="M1 1 A{radius} 2 0 1 1 5 5"/></svg>"#
             )
         };
-        assert_eq!(oversized_arc(&svg("1e6")), None);
-        assert_eq!(oversized_arc(&svg("1e20")), None);
-        let (radius, curves) = oversized_arc(&svg("1e30")).unwrap();
+        assert_eq!(parse_hazard(&svg("1e6")), None);
+        assert_eq!(parse_hazard(&svg("1e20")), None);
+        let Some(ParseHazard::Arc { radius, curves }) = parse_hazard(&svg("1e30")) else {
+            panic!("an arc of radius 1e30 is a hazard");
+        };
         assert_eq!(radius, 1e30);
         assert!(curves > MAX_ARC_CURVES);
-        assert_eq!(oversized_arc("not xml"), None);
+        assert_eq!(parse_hazard("not xml"), None);
+    }
+
+    /// `levels` levels of ten `<use>` of the level below, each level's group referenced by the
+    /// next: 10^levels rectangles.
+    fn nested_uses(levels: usize) -> String {
+        let mut svg = String::from(
+            r#"<svg xmlns="http://www.w3.org/2000/svg" xmlns:xlink="http://www.w3.org/1999/xlink"><rect id="l0" width="1" height="1"/>"#,
+        );
+        for level in 1..=levels {
+            svg += &format!(r#"<g id="l{level}">"#);
+            for _ in 0..10 {
+                svg += &format!(r##"<use xlink:href="#l{}"/>"##, level - 1);
+            }
+            svg += "</g>";
+        }
+        svg + "</svg>"
+    }
+
+    #[test]
+    fn use_expansion_is_counted_without_expanding() {
+        // Level k's group holds 10 uses of level k - 1: it expands to 1 + 10 (1 + size(k - 1)).
+        assert_eq!(parse_hazard(&nested_uses(3)), None);
+        let Some(ParseHazard::Uses { elements }) = parse_hazard(&nested_uses(6)) else {
+            panic!("a million rectangles from uses are a hazard");
+        };
+        assert!(elements > 2e6, "{elements}");
+        // Fifty levels: 10^50, still counted at once.
+        assert!(parse_hazard(&nested_uses(50)).is_some());
+        // A use of itself, or of its own parent, counts once.
+        let cycle = r##"<svg xmlns="http://www.w3.org/2000/svg"><g id="g"><use href="#g"/><use href="#u"/><use id="u" href="#u"/></g></svg>"##;
+        assert_eq!(parse_hazard(cycle), None);
     }
 }

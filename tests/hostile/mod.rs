@@ -142,7 +142,7 @@ pub fn svg_canvas(side: u32) -> String {
 }
 
 /// Small SVGs that make a renderer loop, or allocate, far beyond their size: an arc of radius
-/// 1e38, a huge blur, a turbulence of a million octaves, a pattern tile 1e-38 high, a filter
+/// 1e38, ten levels of ten `<use>` of the level below (10¹⁰ elements), a huge blur, a turbulence of a million octaves, a pattern tile 1e-38 high, a filter
 /// region far beyond the canvas, a stroke dashed in steps of 1e-9, and paths with coordinates
 /// near the largest float.
 pub fn hostile_svgs() -> Vec<(&'static str, String)> {
@@ -190,6 +190,7 @@ pub fn hostile_svgs() -> Vec<(&'static str, String)> {
                 r#"<path d="M-3e38 -3e38 L3e38 3e38 L-3e38 3e38 Z" stroke="black" stroke-width="3e38"/>"#,
             ),
         ),
+        ("uses-ten-levels", nested_uses(10)),
         (
             "nested-groups-and-filters",
             document(&format!(
@@ -199,6 +200,21 @@ pub fn hostile_svgs() -> Vec<(&'static str, String)> {
             )),
         ),
     ]
+}
+
+/// `<use>` of ten `<use>` of ten ... `levels` deep: 10^levels rectangles from 3 kB of text.
+pub fn nested_uses(levels: usize) -> String {
+    let mut svg = String::from(
+        r#"<svg xmlns="http://www.w3.org/2000/svg" xmlns:xlink="http://www.w3.org/1999/xlink" width="200" height="200"><defs><rect id="l0" width="1" height="1"/>"#,
+    );
+    for level in 1..=levels {
+        svg += &format!(r#"<g id="l{level}">"#);
+        for k in 0..10 {
+            svg += &format!(r##"<use xlink:href="#l{}" x="{k}"/>"##, level - 1);
+        }
+        svg += "</g>";
+    }
+    svg + &format!(r##"</defs><use xlink:href="#l{levels}"/></svg>"##)
 }
 
 /// Point files: many points on a tiny grid, huge coordinates, long lines without newlines.
