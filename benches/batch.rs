@@ -1,6 +1,6 @@
 //! Benchmarks of batch tracing, 200 files through `run_batch` on 1 and 2 worker threads, to show
 //! how throughput scales with `jobs`:
-//! - with the real tracer (`trace_file_to_svg`, what `crawltrace trace` runs per file) on 200
+//! - with the real tracer (`trace_file_to_document`, what `crawltrace trace` runs per file) on 200
 //!   one-megapixel skip-stroke drawings, generated once from a fixed seed before any timing;
 //! - with a CPU-bound fake processor (about 5 ms of hashing a file), which measures the engine
 //!   alone, and with a processor that does nothing (the engine's own cost per file).
@@ -24,9 +24,9 @@ use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 
 use crawltrace::batch::{
-    discover_inputs, fnv1a_64, run_batch, trace_file_to_svg, BatchOptions, FileResult,
+    discover_inputs, fnv1a_64, run_batch, trace_file_to_document, BatchOptions, FileResult,
 };
-use crawltrace::TraceOptions;
+use crawltrace::{ExportOptions, TraceOptions};
 use divan::counter::ItemsCount;
 use divan::Bencher;
 use image::{DynamicImage, ImageFormat};
@@ -167,7 +167,7 @@ fn real_tracer_200_drawings_of_1_megapixel(bencher: Bencher, jobs: usize) {
     assert_eq!(discovery.inputs.len(), FILES);
     bencher.counter(ItemsCount::new(FILES)).bench(|| {
         let summary = run_batch(&discovery, output.path(), &options, |path| {
-            trace_file_to_svg(path, &trace_options)
+            trace_file_to_document(path, &trace_options, &ExportOptions::default())
         })
         .expect("the batch runs");
         assert_eq!(summary.done, FILES, "every drawing traces");
@@ -180,7 +180,9 @@ fn real_tracer_200_drawings_of_1_megapixel(bencher: Bencher, jobs: usize) {
 fn real_tracer_one_drawing(bencher: Bencher) {
     let file = drawings().join("group-0").join("drawing-000.png");
     let trace_options = TraceOptions::default();
-    bencher.bench(|| trace_file_to_svg(&file, &trace_options).expect("it traces"));
+    bencher.bench(|| {
+        trace_file_to_document(&file, &trace_options, &ExportOptions::default()).expect("it traces")
+    });
 }
 
 /// Stands in for the tracer: reads the file and does real CPU work that the optimiser cannot
@@ -196,7 +198,7 @@ fn fake_trace(path: &Path) -> Result<FileResult, String> {
         hash ^= fnv1a_64(black_box(&block));
     }
     Ok(FileResult {
-        svg: format!("<svg xmlns=\"http://www.w3.org/2000/svg\"><!-- {hash:016x} --></svg>")
+        bytes: format!("<svg xmlns=\"http://www.w3.org/2000/svg\"><!-- {hash:016x} --></svg>")
             .into_bytes(),
         curves: 1,
         closed_curves: 0,
@@ -258,7 +260,7 @@ fn run_batch_200_files_no_work(bencher: Bencher, jobs: usize) {
     bencher.counter(ItemsCount::new(FILES)).bench(|| {
         run_batch(&discovery, output.path(), &options, |_| {
             Ok::<_, std::convert::Infallible>(FileResult {
-                svg: b"<svg xmlns=\"http://www.w3.org/2000/svg\"/>".to_vec(),
+                bytes: b"<svg xmlns=\"http://www.w3.org/2000/svg\"/>".to_vec(),
                 curves: 0,
                 closed_curves: 0,
             })

@@ -15,15 +15,15 @@ use std::time::{Duration, Instant};
 use crawltrace::stages::binarize::{binarize, BinarizeOptions};
 use crawltrace::stages::bitmap::Bitmap;
 use crawltrace::stages::clean::{clean, estimate_stroke_width};
-use crawltrace::stages::crawl::strokes::{connect, end_extension, minimum_curve_length, Method};
+use crawltrace::stages::crawl::strokes::{connect, Method};
 use crawltrace::stages::decode::{decode_image, to_gray};
-use crawltrace::stages::fit::{default_tolerance, fit_paths, FitOptions};
+use crawltrace::stages::fit::{default_tolerance, fit_paths, sort_paths, FitOptions};
 use crawltrace::stages::geometry::Polyline;
 use crawltrace::stages::strokes::{
-    default_spacing, extract_strokes, sample_strokes, simplification_tolerance, Stroke,
+    default_spacing, extract_strokes, sample_strokes, simplification_tolerance, split_dots, Stroke,
 };
 use crawltrace::stages::thin::thin;
-use crawltrace::{to_svg, Drawing, TraceOptions};
+use crawltrace::{to_svg, CurvePath, Drawing, TraceOptions};
 use divan::{black_box, Bencher};
 use image::{DynamicImage, GrayImage};
 
@@ -74,16 +74,14 @@ impl Pipeline {
         let mut cleaned = binarized.clone();
         clean(&mut cleaned, stroke_width);
         let skeleton = thin(&cleaned);
-        let strokes = extract_strokes(&skeleton, stroke_width);
+        let (strokes, dots) = split_dots(
+            extract_strokes(&skeleton, stroke_width),
+            &cleaned,
+            stroke_width,
+        );
         let spacing = default_spacing(stroke_width);
         let sampled = sample_strokes(&strokes, spacing, simplification_tolerance(stroke_width));
-        let curves = connect(
-            &sampled,
-            Method::Strokes,
-            spacing,
-            minimum_curve_length(stroke_width),
-            end_extension(stroke_width),
-        );
+        let curves = connect(&sampled, Method::Strokes, spacing, stroke_width);
         let fit_options = FitOptions {
             smooth: true,
             tolerance: default_tolerance(stroke_width),
@@ -91,9 +89,11 @@ impl Pipeline {
         let traced = crawltrace::trace(&image, &TraceOptions::default()).expect("the page traces");
         let drawing = traced.drawing;
         // The stage benchmarks are only meaningful if they replay what trace() does.
+        let mut paths = fit_paths(&curves, &fit_options);
+        paths.extend(dots.iter().map(|d| CurvePath::dot(d.centre, d.diameter)));
+        sort_paths(&mut paths);
         assert_eq!(
-            fit_paths(&curves, &fit_options),
-            drawing.paths,
+            paths, drawing.paths,
             "the stage-by-stage pipeline differs from trace()"
         );
         Self {
@@ -244,7 +244,11 @@ fn stage_6_strokes_and_sample(bencher: Bencher, page: Page) {
     let p = pipeline(page);
     let tolerance = simplification_tolerance(p.stroke_width);
     bencher.bench(|| {
-        let strokes = extract_strokes(black_box(&p.skeleton), p.stroke_width);
+        let (strokes, _dots) = split_dots(
+            extract_strokes(black_box(&p.skeleton), p.stroke_width),
+            &p.cleaned,
+            p.stroke_width,
+        );
         sample_strokes(&strokes, p.spacing, tolerance)
     });
 }
@@ -257,8 +261,7 @@ fn stage_7_reconstruct(bencher: Bencher, page: Page) {
             black_box(&p.sampled),
             Method::Strokes,
             p.spacing,
-            minimum_curve_length(p.stroke_width),
-            end_extension(p.stroke_width),
+            p.stroke_width,
         )
     });
 }

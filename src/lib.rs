@@ -9,7 +9,10 @@
 //! |---|---|---|
 //! | trace an image in memory | [`trace()`] | [`Traced`]: a [`Drawing`], one path per drawn shape |
 //! | trace an image file | [`trace_file`] | [`Traced`] |
-//! | write SVG | [`to_svg`] | the SVG text of a [`Drawing`] |
+//! | trace an image file held in memory | [`trace_bytes`] | [`Traced`] |
+//! | write SVG | [`to_svg`], [`to_svg_with_size`] | the SVG text of a [`Drawing`], in pixels or at a physical size |
+//! | write DXF | [`to_dxf`] | the DXF text of a [`Drawing`], one polyline per curve |
+//! | write a traced drawing as SVG or DXF at its physical size | [`export()`] | the file's text |
 //! | reconstruct curves from points | [`reconstruct()`] | [`Reconstruction`]: chains of input indices, open or closed, and outliers |
 //! | read a point file | [`parse_points`] | [`PointFile`]: the points and their line numbers |
 //! | render SVG to pixels | [`render_svg`], [`render_svg_with`] | an RGBA image |
@@ -38,6 +41,7 @@ pub mod files;
 pub mod stages;
 
 mod crawl;
+mod export;
 mod geometry;
 mod output;
 mod points;
@@ -50,10 +54,15 @@ pub use kurbo::Point;
 pub use crawl::reconstruct::{reconstruct, Curve, MergedDuplicate, Reconstruction};
 pub use crawl::strokes::Method;
 pub use crawl::ReconstructError;
+pub use export::{export, ExportOptions, OutputFormat};
+pub use output::dxf::to_dxf;
 pub use output::render::{
     prepare_render, render_svg, render_svg_with, PreparedRender, RenderError, RenderOptions,
 };
-pub use output::svg::{to_svg, CurvePath, Drawing};
+pub use output::svg::{to_svg, to_svg_with_size, CurvePath, Drawing};
+pub use output::units::{Length, PhysicalSize, SizeRequest, SizeRequestError, Units, UnitsError};
 pub use points::read::{parse_points, PointFile, PointFileError};
 pub use raster::binarize::{BinarizeOptions, ThresholdMethod};
-pub use trace::{trace, trace_file, TraceError, TraceFileError, TraceOptions, TraceReport, Traced};
+pub use trace::{
+    trace, trace_bytes, trace_file, TraceError, TraceFileError, TraceOptions, TraceReport, Traced,
+};

@@ -4,21 +4,22 @@
 //!
 //! Images: [`decode`] → [`binarize`] → [`clean`] → [`thin`] (all on a [`bitmap::Bitmap`]) →
 //! [`strokes`] (the skeleton's pen strokes, sampled) → [`crawl`] (curves) → [`fit`] (paths) →
-//! [`svg`]; [`render`] draws SVG back into pixels and [`debug`] pictures every stage.
+//! [`svg`] or [`dxf`] (paths [`flatten`]ed), sized by [`units`] (with the file's [`density`]);
+//! [`render`] draws SVG back into pixels and [`debug`] pictures every stage.
 //!
 //! Point sets: [`points`] reads point files and writes reconstructions; [`crawl`] reconstructs.
 //!
 //! [`geometry`] holds what several stages share.
 
-pub use crate::output::{debug, fit, render, svg};
-pub use crate::raster::{binarize, bitmap, clean, decode, thin};
+pub use crate::output::{debug, dxf, fit, flatten, render, svg, units};
+pub use crate::raster::{binarize, bitmap, clean, decode, density, radius, thin};
 
 pub mod strokes {
     //! Skeleton → pen strokes → samples: the skeleton traced as a graph, pruned, its junctions
     //! paired by good continuation, and every stroke sampled for the crawl.
     pub use crate::strokes::{
         default_spacing, extract_strokes, minimum_spacing, sample_strokes,
-        simplification_tolerance, Stroke, StrokeEnd, MIN_SPACING_PX,
+        simplification_tolerance, split_dots, Dot, Stroke, StrokeEnd, MIN_SPACING_PX,
     };
 }
 

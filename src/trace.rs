@@ -8,10 +8,12 @@ use std::time::{Duration, Instant};
 
 use image::{DynamicImage, GrayImage};
 
-use crate::crawl::strokes::{connect, end_extension, minimum_curve_length, Method};
+use crate::crawl::strokes::{connect, Method};
 use crate::files::{open_regular_file, ReadError};
 use crate::output::debug::Stages;
-use crate::output::fit::{default_tolerance, fit_paths, FitOptions, MIN_TOLERANCE_PX};
+use crate::output::fit::{
+    default_tolerance, fit_paths, sort_paths, CurvePath, FitOptions, MIN_TOLERANCE_PX,
+};
 use crate::output::svg::Drawing;
 use crate::raster::binarize::{binarize, BinarizeOptions, MethodUsed};
 use crate::raster::bitmap::Bitmap;
@@ -20,9 +22,11 @@ use crate::raster::decode::{
     decode_image_within, identify_format, to_gray, DecodeError, DecodeLimits, DEFAULT_MAX_PIXELS,
     IDENTIFY_BYTES,
 };
+use crate::raster::density::image_dpi;
 use crate::raster::thin::thin;
 use crate::strokes::{
     default_spacing, extract_strokes, minimum_spacing, sample_strokes, simplification_tolerance,
+    split_dots,
 };
 
 /// What to do differently from the defaults. `TraceOptions::default()` needs no tuning.
@@ -87,6 +91,9 @@ pub struct TraceReport {
     pub stroke_width: f64,
     /// The sample spacing used, in pixels.
     pub spacing: f64,
+    /// The fitting tolerance used (`--simplify`), in pixels: the paths stray at most this far
+    /// from the reconstructed curves. Writers that flatten the paths (DXF) flatten within it.
+    pub tolerance: f64,
     /// What cleaning removed.
     pub cleaned: CleanReport,
     /// Number of pen strokes found in the skeleton.
@@ -106,6 +113,9 @@ pub struct Traced {
     pub report: TraceReport,
     /// Intermediate results, if asked for.
     pub stages: Option<Stages>,
+    /// The pixel density the image file records, in pixels per inch (PNG `pHYs`, JPEG JFIF or
+    /// EXIF, TIFF, BMP); `None` when it records none, or when the image was given decoded.
+    pub image_dpi: Option<f64>,
 }
 
 /// Traces a line drawing into one vector path per drawn shape.
@@ -142,7 +152,11 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
     let raster = raster_stages(image, options, &mut report, &mut watch)?;
     let stroke_width = raster.stroke_width;
 
-    let strokes = extract_strokes(&raster.skeleton, stroke_width);
+    let (strokes, dots) = split_dots(
+        extract_strokes(&raster.skeleton, stroke_width),
+        &raster.mask,
+        stroke_width,
+    );
     report.strokes = strokes.len();
     let spacing = options
         .spacing
@@ -154,13 +168,7 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
     report.samples = sampled.iter().map(|s| s.line.points.len()).sum();
     watch.lap(&mut report, "strokes+sample");
 
-    let curves = connect(
-        &sampled,
-        options.method,
-        spacing,
-        minimum_curve_length(stroke_width),
-        end_extension(stroke_width),
-    );
+    let curves = connect(&sampled, options.method, spacing, stroke_width);
     watch.lap(&mut report, "reconstruct");
 
     let fit_options = FitOptions {
@@ -171,7 +179,13 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
             .map(|t| t.max(MIN_TOLERANCE_PX))
             .unwrap_or_else(|| default_tolerance(stroke_width)),
     };
-    let paths = fit_paths(&curves, &fit_options);
+    report.tolerance = fit_options.tolerance;
+    let mut paths = fit_paths(&curves, &fit_options);
+    paths.extend(
+        dots.iter()
+            .map(|dot| CurvePath::dot(dot.centre, dot.diameter)),
+    );
+    sort_paths(&mut paths);
     watch.lap(&mut report, "fit");
 
     let drawing = Drawing {
@@ -197,6 +211,7 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
         drawing,
         report,
         stages,
+        image_dpi: None,
     })
 }
 
@@ -334,19 +349,51 @@ pub enum TraceFileError {
 /// [`TraceFileError::Decode`] when it is not an image this crate reads or has too many pixels,
 /// [`TraceFileError::Trace`] when the image has no ink.
 pub fn trace_file(path: &Path, options: &TraceOptions) -> Result<Traced, TraceFileError> {
-    let image = read_image_file(path, &DecodeLimits::with_max_pixels(options.max_pixels))?;
+    let bytes = read_image_file(path, &DecodeLimits::with_max_pixels(options.max_pixels))?;
+    trace_bytes(bytes, options)
+}
+
+/// Decodes and traces an image file held in memory (read from standard input, say): [`trace()`]
+/// on its image, with [`Traced::image_dpi`] read from the file. The format is recognised from
+/// the content.
+///
+/// # Examples
+///
+/// ```
+/// use crawltrace::{trace_bytes, TraceFileError, TraceOptions};
+///
+/// let bytes = std::fs::read("samples/letters-clean.png").unwrap();
+/// let traced = trace_bytes(bytes, &TraceOptions::default())?;
+/// assert!(!traced.drawing.paths.is_empty());
+///
+/// let garbage = trace_bytes(b"hello".to_vec(), &TraceOptions::default());
+/// assert!(matches!(garbage, Err(TraceFileError::Decode(_))));
+/// # Ok::<(), TraceFileError>(())
+/// ```
+///
+/// # Errors
+///
+/// [`TraceFileError::Decode`] when the bytes are not an image this crate reads or it has more
+/// pixels than [`TraceOptions::max_pixels`],
+/// [`TraceFileError::Trace`] when the image has no ink; never [`TraceFileError::Read`].
+pub fn trace_bytes(bytes: Vec<u8>, options: &TraceOptions) -> Result<Traced, TraceFileError> {
+    let image_dpi = image_dpi(&bytes);
+    let image = decode_image_within(&bytes, &DecodeLimits::with_max_pixels(options.max_pixels))?;
+    drop(bytes);
     // The trace starts by reducing the image to 8-bit gray; doing it here instead lets the
     // colour pixels (3 to 16 bytes each) go before the trace, not after it. Same result.
     let image = match image {
         gray @ DynamicImage::ImageLuma8(_) => gray,
         other => DynamicImage::ImageLuma8(to_gray(&other)),
     };
-    Ok(trace(&image, options)?)
+    let mut traced = trace(&image, options)?;
+    traced.image_dpi = image_dpi;
+    Ok(traced)
 }
 
-/// Reads and decodes an image file within `limits`: a regular file, no larger than
+/// Reads an image file within `limits`: a regular file, no larger than
 /// [`DecodeLimits::max_file_bytes`], whose first bytes are an image's.
-fn read_image_file(path: &Path, limits: &DecodeLimits) -> Result<DynamicImage, TraceFileError> {
+fn read_image_file(path: &Path, limits: &DecodeLimits) -> Result<Vec<u8>, TraceFileError> {
     let (file, size) = open_regular_file(path)?;
     let limit = limits.max_file_bytes();
     if size > limit {
@@ -366,5 +413,5 @@ fn read_image_file(path: &Path, limits: &DecodeLimits) -> Result<DynamicImage, T
         // The file grew since it was opened.
         return Err(TraceFileError::TooLarge { size, limit });
     }
-    Ok(decode_image_within(&bytes, limits)?)
+    Ok(bytes)
 }

@@ -20,7 +20,7 @@ fn fake_processor(path: &Path) -> Result<FileResult, String> {
         return Err("bad drawing".to_string());
     }
     Ok(FileResult {
-        svg: fake_svg(&content).into_bytes(),
+        bytes: fake_svg(&content).into_bytes(),
         curves: 2,
         closed_curves: 1,
     })

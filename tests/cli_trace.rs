@@ -2,49 +2,13 @@
 //! dashed SVG strokes) in a temporary folder: formats, outputs, errors, determinism, `--debug`,
 //! `render`.
 
+mod support;
+
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
 use image::{DynamicImage, GrayImage, ImageFormat, Luma};
 
-const BINARY: &str = env!("CARGO_BIN_EXE_crawltrace");
-
-fn run(args: &[&str], folder: &Path) -> Output {
-    let output = Command::new(BINARY)
-        .args(args)
-        .current_dir(folder)
-        .output()
-        .expect("the binary runs");
-    let stderr = String::from_utf8_lossy(&output.stderr);
-    assert!(
-        !stderr.contains("panicked") && !stderr.contains("RUST_BACKTRACE"),
-        "crawltrace {args:?} panicked:\n{stderr}"
-    );
-    output
-}
-
-fn describe(args: &[&str], output: &Output) -> String {
-    format!(
-        "crawltrace {}\nexit: {:?}\nstderr:\n{}",
-        args.join(" "),
-        output.status.code(),
-        String::from_utf8_lossy(&output.stderr)
-    )
-}
-
-/// A skip-stroke sketch: a dashed circle (closed) and a dashed wave (open), as a gray image.
-fn sketch(width: u32, height: u32) -> GrayImage {
-    let svg = format!(
-        r##"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}">
-        <rect width="100%" height="100%" fill="white"/>
-        <g fill="none" stroke="black" stroke-width="3" stroke-linecap="round" stroke-dasharray="22 7">
-          <circle cx="70" cy="70" r="45"/>
-          <path d="M20 160 C60 130 100 190 140 160 S 200 130 220 160"/>
-        </g></svg>"##
-    );
-    let rgba = crawltrace::render_svg(&svg, 1.0).expect("test SVG renders");
-    DynamicImage::ImageRgba8(rgba).to_luma8()
-}
+use support::cli::{describe, run, sketch};
 
 fn write_image(folder: &Path, name: &str, image: DynamicImage, format: ImageFormat) -> PathBuf {
     let path = folder.join(name);

@@ -13,13 +13,23 @@ use crawltrace::{to_svg, trace, TraceOptions};
 /// to pass too, so that this list and the README's table stay true.
 const KNOWN_FAILURES: &[(&str, &str)] = &[
     (
-        "star-circle-thin.png",
-        "the star's 36° tips come out 3.3 px short with a 1.75 px pen; the tolerance is 2.9 px",
+        "objects-clean.png",
+        "the cloud's outline strays 4.0 px from the truth at its notches with a 3 px pen; the \
+         tolerance is 3.5 px",
     ),
     (
-        "weather-alpha.png",
-        "the bolt's 15° tip is a separate dash; the two arm ends, 4 px apart, are bridged to each \
-         other and the dash is dropped, cutting the tip by 17 px",
+        "spiral-waves-thin.png",
+        "a wave's peak strays 3.2 px from the truth with a 1.9 px pen; the tolerance is 2.9 px",
+    ),
+    (
+        "squares-triangles-thick.png",
+        "two triangles' 30° tips: one stays open (the base's thick end curls, so its line misses \
+         the other side's end by more than a pen width and their rays meet behind the tip), the \
+         other is cut short",
+    ),
+    (
+        "star-circle-thin.png",
+        "the star's 36° tips come out 3.3 px short with a 1.75 px pen; the tolerance is 2.9 px",
     ),
 ];
 

@@ -19,9 +19,12 @@ const CORNER_CLEARANCE: f64 = 1.0;
 
 /// One pen stroke: a polyline drawn with round caps and joins.
 pub struct Stroke {
-    points: Vec<Point>,
-    width: f64,
-    gray: u8,
+    /// The pen's path, in pixels.
+    pub points: Vec<Point>,
+    /// The pen width, in pixels.
+    pub width: f64,
+    /// The ink's grey level (0 = black).
+    pub gray: u8,
 }
 
 /// The strokes a person would draw along `curve` with a pen `pen` pixels wide and ink no lighter
@@ -154,6 +157,18 @@ fn jittered_points(
     random: &mut SplitMix64,
 ) -> Vec<Point> {
     let amplitude = (pen / 3.0).min(1.0) * random.range(0.5, 1.0);
+    wobbled_points(curve, start, end, amplitude, random)
+}
+
+/// The true curve from `start` to `end`, offset sideways by a smooth wobble of at most
+/// `amplitude` pixels: a sum of two sine waves of random wavelength and phase.
+pub fn wobbled_points(
+    curve: &TrueCurve,
+    start: f64,
+    end: f64,
+    amplitude: f64,
+    random: &mut SplitMix64,
+) -> Vec<Point> {
     let long_wave = random.range(30.0, 80.0);
     let short_wave = random.range(10.0, 25.0);
     let (long_phase, short_phase) = (random.range(0.0, 6.3), random.range(0.0, 6.3));

@@ -13,6 +13,7 @@ use walkdir::WalkDir;
 
 use super::shard::shard_key;
 use super::{BatchError, BatchOptions};
+use crate::export::OutputFormat;
 use crate::files::read::not_a_file_kind;
 use crate::files::{describe_io, printable};
 
@@ -50,9 +51,10 @@ pub struct Input {
 }
 
 impl Input {
-    /// Where the output goes, relative to the output folder: `relative` with the extension `svg`.
-    pub fn output_relative(&self) -> PathBuf {
-        self.relative.with_extension("svg")
+    /// Where the output goes, relative to the output folder: `relative` with the extension of
+    /// `format`.
+    pub fn output_relative(&self, format: OutputFormat) -> PathBuf {
+        self.relative.with_extension(format.extension())
     }
 }
 
@@ -175,9 +177,9 @@ pub fn discover_inputs(
 
     let mut outputs: HashMap<PathBuf, &Input> = HashMap::new();
     for input in found.iter().filter(|input| input.unreadable.is_none()) {
-        if let Some(first) = outputs.insert(input.output_relative(), input) {
+        if let Some(first) = outputs.insert(input.output_relative(options.format), input) {
             return Err(BatchError::OutputCollision {
-                output: input.output_relative(),
+                output: input.output_relative(options.format),
                 first: first.source.clone(),
                 second: input.source.clone(),
             });
@@ -197,7 +199,7 @@ pub fn discover_inputs(
             discovery.other_shard_outputs = others
                 .iter()
                 .filter(|input| input.unreadable.is_none())
-                .map(Input::output_relative)
+                .map(|input| input.output_relative(options.format))
                 .collect();
             mine
         }

@@ -50,7 +50,7 @@ where
     if options.jobs == Some(0) {
         return Err(BatchError::NoJobs);
     }
-    let refusals = plan_outputs(discovery, out_dir, options.report.as_deref())?;
+    let refusals = plan_outputs(discovery, out_dir, options)?;
     fs::create_dir_all(out_dir).map_err(|source| BatchError::OutputFolder {
         path: out_dir.to_path_buf(),
         source,
@@ -65,7 +65,7 @@ where
             console.line(&format!("warning: {warning}"));
         }
     }
-    clean_up_interrupted_writes(discovery, out_dir, options.report.as_deref(), &console);
+    clean_up_interrupted_writes(discovery, out_dir, options, &console);
     // An indexed parallel iterator collects in input order, whatever order the files finish in.
     let outcomes: Vec<FileOutcome<E>> = pool.install(|| {
         discovery
@@ -73,7 +73,7 @@ where
             .par_iter()
             .zip(refusals.into_par_iter())
             .map(|(input, refusal)| {
-                let outcome = process_one(input, out_dir, options.force, refusal, &process);
+                let outcome = process_one(input, out_dir, options, refusal, &process);
                 if let FileStatus::Failed { error, .. } = &outcome.status {
                     console.line(&failure_line(&outcome.source, &error.to_string()));
                 }
@@ -106,15 +106,16 @@ where
 fn plan_outputs(
     discovery: &Discovery,
     out_dir: &Path,
-    report: Option<&Path>,
+    options: &BatchOptions,
 ) -> Result<Vec<Option<OutputRefusal>>, BatchError> {
+    let report = options.report.as_deref();
     let mut plan = OutputPlan::with_resolved_inputs(discovery.protected.clone());
     let refusals = discovery
         .inputs
         .iter()
         .map(|input| match input.unreadable {
             Some(_) => None,
-            None => plan.claim(&out_dir.join(input.output_relative())).err(),
+            None => plan.claim(&out_dir.join(input.output_relative(options.format))).err(),
         })
         .collect();
     for relative in &discovery.other_shard_outputs {
@@ -145,13 +146,15 @@ fn plan_outputs(
 fn clean_up_interrupted_writes(
     discovery: &Discovery,
     out_dir: &Path,
-    report: Option<&Path>,
+    options: &BatchOptions,
     console: &Console,
 ) {
+    let report = options.report.as_deref();
     let mut folders: BTreeSet<PathBuf> = discovery
         .inputs
         .iter()
-        .map(|input| parent_folder(&out_dir.join(input.output_relative())).to_path_buf())
+        .map(|input| out_dir.join(input.output_relative(options.format)))
+        .map(|output| parent_folder(&output).to_path_buf())
         .collect();
     folders.extend(report.map(|report| parent_folder(report).to_path_buf()));
     for folder in folders {
@@ -174,7 +177,7 @@ fn without_current_dir(path: &Path) -> impl Iterator<Item = Component<'_>> {
 fn process_one<F, E>(
     input: &Input,
     out_dir: &Path,
-    force: bool,
+    options: &BatchOptions,
     refusal: Option<OutputRefusal>,
     process: &F,
 ) -> FileOutcome<E>
@@ -190,7 +193,7 @@ where
             },
         ),
         None => {
-            let output = out_dir.join(input.output_relative());
+            let output = out_dir.join(input.output_relative(options.format));
             let status = match refusal {
                 Some(refusal) => FileStatus::Failed {
                     error: FileError::OutputRefused {
@@ -199,7 +202,7 @@ where
                     },
                     seconds: None,
                 },
-                None => trace_one(input, &output, force, process),
+                None => trace_one(input, &output, options.force, process),
             };
             (Some(output), status)
         }
@@ -253,7 +256,7 @@ where
         let folder = folder.to_path_buf();
         return failed(FileError::CreateFolder { folder, source }, Some(seconds()));
     }
-    if let Err(source) = write_atomically(output, &result.svg) {
+    if let Err(source) = write_atomically(output, &result.bytes) {
         let output = output.to_path_buf();
         return failed(FileError::Write { output, source }, Some(seconds()));
     }

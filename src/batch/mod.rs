@@ -2,12 +2,13 @@
 //! processor over them in parallel, and reports (progress bar, error lines, summary, JSON Lines).
 //!
 //! The engine knows nothing about tracing: it takes any `Fn(&Path) -> Result<FileResult, E>`
-//! and keeps each failure's error value, so the real tracer ([`trace_file_to_svg`]) and the test
-//! and benchmark fakes go through the same code.
+//! and keeps each failure's error value, so the real tracer ([`trace_file_to_document`]) and the
+//! test and benchmark fakes go through the same code.
 //!
 //! Rules it keeps (see `docs/design.md`, "Command line"):
-//! - the output of `x/y.png` under a folder input is `OUT/x/y.svg`; two inputs with the same output
-//!   are an error before any work starts;
+//! - the output of `x/y.png` under a folder input is `OUT/x/y.svg` (or `.dxf`, as
+//!   [`BatchOptions::format`] says); two inputs with the same output are an error before any work
+//!   starts;
 //! - an input is never overwritten, and outputs are written whole
 //!   ([`crate::files::write_atomically`]);
 //! - an output file at least as new as its input is up to date and skipped unless `force`;
@@ -31,15 +32,15 @@ pub use engine::run_batch;
 pub use report::{BatchSummary, FileError, FileOutcome, FileStatus};
 pub use shard::{fnv1a_64, Shard, ShardError};
 
+use crate::export::{export, ExportOptions, OutputFormat};
 use crate::files::{describe_io, printable, printable_text, OutputRefusal};
-use crate::output::svg::to_svg;
 use crate::trace::{trace_file, TraceFileError, TraceOptions};
 
 /// What the per-file processor returns for one image.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct FileResult {
-    /// The SVG document to write.
-    pub svg: Vec<u8>,
+    /// The document to write (SVG or DXF).
+    pub bytes: Vec<u8>,
     /// How many curves it holds.
     pub curves: usize,
     /// How many of them are closed.
@@ -66,6 +67,8 @@ pub struct BatchOptions {
     pub shard: Option<Shard>,
     /// Write a JSON Lines report here at the end, one object per input.
     pub report: Option<PathBuf>,
+    /// The format of the outputs, which gives their extension (`.svg`, `.dxf`).
+    pub format: OutputFormat,
 }
 
 /// An error that stops a batch before (or, for the report, after) the per-file work. Its text is
@@ -154,20 +157,21 @@ fn describe_folder_error(error: &io::Error) -> String {
     }
 }
 
-/// Traces one image file into an SVG document: the per-file work of `crawltrace trace` on a
-/// folder, for [`run_batch`]. Public so that benchmarks and other front ends run exactly what the
-/// command runs.
+/// Traces one image file into a document (SVG or DXF, as [`export()`] writes it): the per-file
+/// work of `crawltrace trace` on a folder, for [`run_batch`]. Public so that benchmarks and other
+/// front ends run exactly what the command runs.
 ///
 /// # Errors
 /// As [`trace_file`]: the file cannot be read, is not an image, or has no ink.
-pub fn trace_file_to_svg(
+pub fn trace_file_to_document(
     path: &Path,
     options: &TraceOptions,
+    export_options: &ExportOptions,
 ) -> Result<FileResult, TraceFileError> {
     let traced = trace_file(path, options)?;
     let paths = &traced.drawing.paths;
     Ok(FileResult {
-        svg: to_svg(&traced.drawing).into_bytes(),
+        bytes: export(&traced, export_options).into_bytes(),
         curves: paths.len(),
         closed_curves: paths.iter().filter(|path| path.closed).count(),
     })

@@ -1,31 +1,55 @@
-//! Gap bridges: which free stroke ends (the pen's lift-off points) are joined across a pen lift,
-//! matched greedily from the cheapest bridge (shortest, straightest) along Delaunay edges, each end
-//! used once, with bridges much longer than the drawing's typical gap left out.
+//! Gap bridges: which stroke ends are joined across a pen lift. Free ends (the pen's lift-off
+//! points) and T-ends (a stroke that ran into another one, taken at the junction point) are
+//! matched greedily from the cheapest bridge (shortest, straightest), each end used once, with
+//! bridges much longer than the drawing's typical gap left out.
 
 use std::collections::HashMap;
 
 use kurbo::{Point, Vec2};
 
-use super::neighbours::NeighbourGraph;
 use super::strokes::StrokeVertices;
 use crate::geometry::polyline::polyline_length;
 use crate::geometry::UnionFind;
 use crate::strokes::MIN_LOOP_SAMPLES;
 
-/// A free stroke end: a vertex and which end of which stroke it is.
+/// A stroke end that may take a bridge.
 #[derive(Clone, Copy, Debug)]
-pub(super) struct FreeEnd {
+pub(super) struct BridgeableEnd {
     pub(super) vertex: u32,
     pub(super) stroke: usize,
-    /// The unit direction in which the pen was moving when it lifted here; `None` for a dot.
+    /// The unit direction in which the pen was moving at this end; `None` for a dot.
     pub(super) outward: Option<Vec2>,
+    /// Where the curve goes on from: the end itself, or for a T-end the junction point on the
+    /// stroke it ran into.
+    pub(super) at: Point,
+    /// Whether it is a T-end.
+    pub(super) attached: bool,
 }
 
-/// A possible bridge: (cost, length, end, other end), the ends as vertices, `end < other end`.
-type Candidate = (f64, f64, u32, u32);
+/// A possible bridge between two ends (vertices `a < b`).
+struct Candidate {
+    cost: f64,
+    /// The drawn length, rim to rim.
+    length: f64,
+    a: u32,
+    b: u32,
+    /// The corner the bridge is drawn through, if it is one.
+    corner: Option<Point>,
+    /// Whether both ends are free ends (a pen lift, which the typical gap is measured on).
+    between_free_ends: bool,
+}
 
-/// Chooses the bridges across pen lifts: pairs of free stroke ends joined by a Delaunay edge,
-/// matched greedily from the shortest, each end used once.
+/// An accepted bridge: its two end vertices and the points the curve goes through between them,
+/// in order from `a` to `b` (a T-end's junction point, a corner put back).
+#[derive(Clone, Debug)]
+pub(super) struct Bridge {
+    pub(super) a: u32,
+    pub(super) b: u32,
+    pub(super) via: Vec<Point>,
+}
+
+/// Chooses the bridges across pen lifts: pairs of ends at most a few typical gaps apart, matched
+/// greedily from the cheapest, each end used once.
 ///
 /// DECISION: greedy shortest-first matching rather than the crawl's own greedy choice, so that an
 /// end cannot be taken by a farther end that happens to be crawled first (the end of an open
@@ -49,128 +73,419 @@ const TYPICAL_GAP_MAX_IN_SPACINGS: f64 = 3.0;
 /// DECISION: a bridge may be at most this many typical gaps long; see [`match_gap_bridges`].
 const BRIDGE_MAX_IN_TYPICAL_GAPS: f64 = 2.0;
 
+/// A bridge that clearly closes a loop may be this many typical gaps long; see
+/// [`Matching::closes_clearly`].
+const LOOP_GAP_MAX_IN_TYPICAL_GAPS: f64 = 3.5;
+
+/// ... and at most this share of the loop.
+const LOOP_GAP_MAX_SHARE_WIDE: f64 = 0.15;
+
+/// A straight bridge may turn by at most this much at either end, in degrees.
+const MAX_STRAIGHT_TURN_DEGREES: f64 = 60.0;
+
+/// Ends turning by more than this (degrees) may instead be joined at the corner where their lines
+/// meet.
+const MIN_CORNER_TURN_DEGREES: f64 = 35.0;
+
+/// The lines of two ends may meet this share of the distance between the ends behind one of
+/// them and still count as meeting at that end (a stroke drawn right up to a corner).
+const CORNER_AT_END_SLACK: f64 = 0.2;
+
+/// Rays closer to parallel than this (the sine of the angle between them) do not meet.
+const MIN_RAY_CROSSING_SINE: f64 = 0.05;
+
+/// The `k` of the continuation cost `length · exp(k·(θa² + θb²))`, θ in radians: a partner
+/// straight ahead is preferred to one turning by θ ≥ 35° up to 1.5 times its length.
+const TURN_COST: f64 = 1.1;
+
 /// A stroke may be bridged to itself only with at least this many samples (the paper's "more
 /// than two edges" before a chain closes).
 const MIN_SELF_BRIDGED_SAMPLES: usize = MIN_LOOP_SAMPLES;
 
 pub(super) fn match_gap_bridges(
     vertices: &StrokeVertices,
-    delaunay: &NeighbourGraph,
-    free_ends: &[FreeEnd],
+    ends: &[BridgeableEnd],
     spacing: f64,
-) -> Vec<(u32, u32)> {
-    let candidates = bridge_candidates(vertices, delaunay, free_ends);
-    // How many bridges each vertex may take: one per free end it is (two for a one-sample dot).
-    let mut slots: HashMap<u32, u8> = HashMap::new();
-    for end in free_ends {
-        *slots.entry(end.vertex).or_default() += 1;
+    stroke_width: f64,
+) -> Vec<Bridge> {
+    // No bridge can be longer than the widest loop-closing gap allowed with the largest typical
+    // gap, rim to rim, plus the pen width thinning took off the two ends.
+    let reach = LOOP_GAP_MAX_IN_TYPICAL_GAPS * TYPICAL_GAP_MAX_IN_SPACINGS * spacing
+        + stroke_width
+        + 2.0
+            * vertices
+                .dot_radius
+                .values()
+                .fold(0.0, |a: f64, &b| a.max(b));
+    let candidates = bridge_candidates(vertices, ends, reach, stroke_width);
+    let matching = Matching::new(vertices, ends, &candidates, stroke_width);
+    // First pass: the drawing's typical gap. Second pass: the matching itself, with overlong
+    // bridges out of the running, so that they cannot take an end from a real gap.
+    let mut gaps: Vec<f64> = matching
+        .run(None)
+        .iter()
+        .filter(|m| m.between_free_ends)
+        .map(|m| matching.ink_gap(m))
+        .collect();
+    if gaps.is_empty() {
+        return Vec::new();
     }
-    let stroke_of: HashMap<u32, usize> = free_ends.iter().map(|e| (e.vertex, e.stroke)).collect();
-    let greedy_match = |longest: f64| -> Vec<(f64, u32, u32)> {
-        let mut groups = StrokeGroups::new(vertices);
-        let mut matched: Vec<(f64, u32, u32)> = Vec::new();
-        let mut remaining = slots.clone();
-        for &(_, length, a, b) in &candidates {
+    gaps.sort_by(f64::total_cmp);
+    let typical_gap = gaps[gaps.len() / 2].clamp(
+        TYPICAL_GAP_MIN_IN_SPACINGS * spacing,
+        TYPICAL_GAP_MAX_IN_SPACINGS * spacing,
+    );
+    let junction_of: HashMap<u32, Point> = ends
+        .iter()
+        .filter(|end| end.attached)
+        .map(|end| (end.vertex, end.at))
+        .collect();
+    matching
+        .run(Some(typical_gap))
+        .into_iter()
+        .map(|m| {
+            let mut via: Vec<Point> = junction_of.get(&m.a).copied().into_iter().collect();
+            via.extend(m.corner);
+            via.extend(junction_of.get(&m.b).copied());
+            via.dedup();
+            Bridge {
+                a: m.a,
+                b: m.b,
+                via,
+            }
+        })
+        .collect()
+}
+
+/// The greedy matching of ends, cheapest bridge first.
+struct Matching<'a> {
+    vertices: &'a StrokeVertices,
+    candidates: &'a [Candidate],
+    /// How many bridges each vertex may take: one per free end it is (two for a one-sample dot).
+    slots: HashMap<u32, u8>,
+    stroke_of: HashMap<u32, usize>,
+    stroke_width: f64,
+}
+
+impl<'a> Matching<'a> {
+    fn new(
+        vertices: &'a StrokeVertices,
+        ends: &[BridgeableEnd],
+        candidates: &'a [Candidate],
+        stroke_width: f64,
+    ) -> Self {
+        let mut slots: HashMap<u32, u8> = HashMap::new();
+        for end in ends {
+            *slots.entry(end.vertex).or_default() += 1;
+        }
+        Self {
+            vertices,
+            candidates,
+            slots,
+            stroke_of: ends.iter().map(|e| (e.vertex, e.stroke)).collect(),
+            stroke_width,
+        }
+    }
+
+    /// The gap the pen left, ink to ink: thinning ends every stroke half a pen width inside its
+    /// ink, so a bridge between two skeleton ends is a pen width longer than the gap on paper.
+    /// Ratios of gaps are ratios of these.
+    fn ink_gap(&self, candidate: &Candidate) -> f64 {
+        (candidate.length - self.stroke_width).max(0.0)
+    }
+
+    /// Matches ends greedily from the cheapest candidate, each end used once. With a typical gap,
+    /// a bridge may be at most [`BRIDGE_MAX_IN_TYPICAL_GAPS`] of it, or, when it closes a loop,
+    /// [`LOOP_GAP_MAX_IN_TYPICAL_GAPS`] under the conditions of [`Matching::closes_clearly`].
+    fn run(&self, typical_gap: Option<f64>) -> Vec<&'a Candidate> {
+        let mut groups = StrokeGroups::new(self.vertices);
+        let mut matched: Vec<&Candidate> = Vec::new();
+        let mut remaining = self.slots.clone();
+        let mut taken = vec![false; self.candidates.len()];
+        // Whether a bridge closes a loop depends on the bridges taken before it, and the gap that
+        // closes an outline is often its widest, so it comes last in cost order: rejected
+        // candidates get another look once the cheaper bridges have joined their strokes.
+        loop {
+            let matched_before = matched.len();
+            self.match_pass(
+                typical_gap,
+                &mut groups,
+                &mut remaining,
+                &mut taken,
+                &mut matched,
+            );
+            if matched.len() == matched_before || typical_gap.is_none() {
+                return matched;
+            }
+        }
+    }
+
+    /// One greedy pass over the candidates not taken yet, cheapest first.
+    fn match_pass(
+        &self,
+        typical_gap: Option<f64>,
+        groups: &mut StrokeGroups,
+        remaining: &mut HashMap<u32, u8>,
+        taken: &mut [bool],
+        matched: &mut Vec<&'a Candidate>,
+    ) {
+        for (index, candidate) in self.candidates.iter().enumerate() {
+            let (length, a, b) = (candidate.length, candidate.a, candidate.b);
             // Each pair is a candidate once: `dedup` removed the copy a two-slot dot makes.
-            if length > longest || remaining[&a] == 0 || remaining[&b] == 0 {
+            if taken[index] || remaining[&a] == 0 || remaining[&b] == 0 {
                 continue;
             }
-            let (stroke_a, stroke_b) = (stroke_of[&a], stroke_of[&b]);
+            let (stroke_a, stroke_b) = (self.stroke_of[&a], self.stroke_of[&b]);
+            let closes_loop = groups.same(stroke_a, stroke_b);
+            let loop_length = groups.length(stroke_a) + length;
             // DECISION: a bridge that closes a loop must be short next to the loop: at most a
             // quarter of its length. A skip-stroke gap is a small part of the outline it
             // interrupts; an opening as wide as a quarter of the curve is drawn on purpose (an
             // open mouth, a "C"), and tiny loops of a few dashes are no shapes at all.
-            if groups.same(stroke_a, stroke_b)
-                && length > LOOP_GAP_MAX_SHARE * (groups.length(stroke_a) + length)
-            {
+            if closes_loop && length > LOOP_GAP_MAX_SHARE * loop_length {
                 continue;
+            }
+            if let Some(typical) = typical_gap {
+                let gap = self.ink_gap(candidate);
+                let within_limit = gap <= BRIDGE_MAX_IN_TYPICAL_GAPS * typical
+                    || (closes_loop
+                        && gap <= LOOP_GAP_MAX_IN_TYPICAL_GAPS * typical
+                        && self.closes_clearly(candidate, loop_length, remaining));
+                if !within_limit {
+                    continue;
+                }
             }
             groups.join(stroke_a, stroke_b, length);
             *remaining.get_mut(&a).expect("free end") -= 1;
             *remaining.get_mut(&b).expect("free end") -= 1;
-            matched.push((length, a, b));
+            taken[index] = true;
+            matched.push(candidate);
         }
-        matched
-    };
-    // First pass: the drawing's typical gap. Second pass: the matching itself, with overlong
-    // bridges out of the running, so that they cannot take an end from a real gap.
-    let mut lengths: Vec<f64> = greedy_match(f64::INFINITY).iter().map(|m| m.0).collect();
-    if lengths.is_empty() {
-        return Vec::new();
     }
-    lengths.sort_by(f64::total_cmp);
-    let typical_gap = lengths[lengths.len() / 2].clamp(
-        TYPICAL_GAP_MIN_IN_SPACINGS * spacing,
-        TYPICAL_GAP_MAX_IN_SPACINGS * spacing,
-    );
-    greedy_match(BRIDGE_MAX_IN_TYPICAL_GAPS * typical_gap)
-        .into_iter()
-        .map(|m| (m.1, m.2))
-        .collect()
+
+    /// DECISION: the gap where the pen comes back to where it started is often the widest of an
+    /// outline, so a bridge that closes a loop may be longer than the others when it clearly is
+    /// that gap: a small part of the loop ([`LOOP_GAP_MAX_SHARE_WIDE`]), the two ends facing each
+    /// other (a straight bridge, or a corner), and no other free end still open nearer to either
+    /// end than the bridge is long (which would make the closing a guess between partners).
+    fn closes_clearly(
+        &self,
+        candidate: &Candidate,
+        loop_length: f64,
+        remaining: &HashMap<u32, u8>,
+    ) -> bool {
+        if candidate.length > LOOP_GAP_MAX_SHARE_WIDE * loop_length {
+            return false;
+        }
+        let positions = &self.vertices.positions;
+        let (pa, pb) = (
+            positions[candidate.a as usize],
+            positions[candidate.b as usize],
+        );
+        let reach = pa.distance(pb);
+        !remaining.iter().any(|(&v, &slots)| {
+            let p = positions[v as usize];
+            slots > 0
+                && v != candidate.a
+                && v != candidate.b
+                && (p.distance(pa) < reach || p.distance(pb) < reach)
+        })
+    }
 }
 
-/// Every Delaunay edge between two free ends that may be a bridge, cheapest first, each pair once.
+/// Every pair of ends at most `reach` apart that may be a bridge, cheapest first, each pair once.
 fn bridge_candidates(
     vertices: &StrokeVertices,
-    delaunay: &NeighbourGraph,
-    free_ends: &[FreeEnd],
+    ends: &[BridgeableEnd],
+    reach: f64,
+    stroke_width: f64,
 ) -> Vec<Candidate> {
-    let positions = &vertices.positions;
-    let stroke_of: HashMap<u32, usize> = free_ends.iter().map(|e| (e.vertex, e.stroke)).collect();
-    let outward_of: HashMap<u32, Option<Vec2>> =
-        free_ends.iter().map(|e| (e.vertex, e.outward)).collect();
-    // How much a bridge from `vertex` towards `direction` turns away from where the pen was
-    // going: 0 straight on, 1 straight back; nothing for a dot.
-    let turn = |vertex: u32, direction: Vec2| -> f64 {
-        outward_of
-            .get(&vertex)
-            .copied()
-            .flatten()
-            .map_or(0.0, |outward| (1.0 - outward.dot(direction)) / 2.0)
-    };
     let mut candidates: Vec<Candidate> = Vec::new();
-    for end in free_ends {
-        for &other in delaunay.neighbours(end.vertex) {
-            let Some(&other_stroke) = stroke_of.get(&other) else {
-                continue;
-            };
-            if other <= end.vertex {
-                continue;
-            }
+    for (a, b) in ends_within(ends, reach) {
+        if a.stroke == b.stroke {
             // A stroke may close on itself only if it is long enough to be a loop: the paper's
             // "more than two edges" before closing.
-            if other_stroke == end.stroke
-                && vertices.of_stroke[end.stroke].len() < MIN_SELF_BRIDGED_SAMPLES
-            {
+            if vertices.of_stroke[a.stroke].len() < MIN_SELF_BRIDGED_SAMPLES {
                 continue;
             }
-            // Gaps are measured between rims: a dot has the size of the dash it stands for.
-            let rims = vertices.dot_radius.get(&end.vertex).unwrap_or(&0.0)
-                + vertices.dot_radius.get(&other).unwrap_or(&0.0);
-            let length = (positions[end.vertex as usize].distance(positions[other as usize])
-                - rims)
-                .max(0.0);
-            // DECISION: good continuation. A bridge is matched by its length times
-            // 1 + (turn at each end), the turn going from 0 (straight on) to 1 (straight back):
-            // at an acute tip the two arm ends are closer to each other than to the dash at the
-            // tip, but reaching each other means turning round; the tip continues both.
-            let direction = positions[other as usize] - positions[end.vertex as usize];
-            let unit = if direction.hypot() > 0.0 {
-                direction / direction.hypot()
-            } else {
-                Vec2::ZERO
-            };
-            let cost = length * (1.0 + turn(end.vertex, unit) + turn(other, -unit));
-            candidates.push((cost, length, end.vertex, other));
+        }
+        // DECISION: the two ends of one stroke that point the same way (a U-stroke's two ends, a
+        // finger tip) are never bridged straight across: that seals the stroke on itself. They may
+        // meet only at a corner ahead of both, as the two sides of a sharp tip do; side by side
+        // ends of a U are near parallel, so their rays meet too far ahead to be a bridge.
+        let same_way = a.stroke == b.stroke
+            && matches!((a.outward, b.outward), (Some(ua), Some(ub)) if ua.dot(ub) > 0.0);
+        // Gaps are measured between rims: a dot has the size of the dash it stands for.
+        let rims = vertices.dot_radius.get(&a.vertex).unwrap_or(&0.0)
+            + vertices.dot_radius.get(&b.vertex).unwrap_or(&0.0);
+        let shape = bridge_shape(
+            BridgeEnd {
+                at: a.at,
+                outward: a.outward,
+            },
+            BridgeEnd {
+                at: b.at,
+                outward: b.outward,
+            },
+            rims,
+            stroke_width,
+        )
+        .filter(|shape| !same_way || shape.corner.is_some());
+        if let Some(shape) = shape {
+            candidates.push(Candidate {
+                cost: shape.cost,
+                length: shape.length,
+                a: a.vertex,
+                b: b.vertex,
+                corner: shape.corner,
+                between_free_ends: !a.attached && !b.attached,
+            });
         }
     }
-    candidates.sort_by(|a, b| {
-        a.0.total_cmp(&b.0)
-            .then(a.1.total_cmp(&b.1))
-            .then((a.2, a.3).cmp(&(b.2, b.3)))
+    candidates.sort_by(|x, y| {
+        x.cost
+            .total_cmp(&y.cost)
+            .then(x.length.total_cmp(&y.length))
+            .then((x.a, x.b).cmp(&(y.a, y.b)))
     });
-    candidates.dedup();
+    candidates.dedup_by(|x, y| (x.a, x.b) == (y.a, y.b));
     candidates
+}
+
+/// Every pair of ends (the one with the smaller vertex first, each pair once) at most `reach`
+/// apart, in a deterministic order: a sweep over the ends sorted by x.
+fn ends_within(ends: &[BridgeableEnd], reach: f64) -> Vec<(BridgeableEnd, BridgeableEnd)> {
+    let mut sorted: Vec<BridgeableEnd> = ends.to_vec();
+    sorted.sort_by(|a, b| a.at.x.total_cmp(&b.at.x).then(a.vertex.cmp(&b.vertex)));
+    let mut pairs = Vec::new();
+    for (i, end) in sorted.iter().enumerate() {
+        for other in &sorted[i + 1..] {
+            if other.at.x - end.at.x > reach {
+                break;
+            }
+            if other.vertex != end.vertex && end.at.distance(other.at) <= reach {
+                pairs.push(if end.vertex < other.vertex {
+                    (*end, *other)
+                } else {
+                    (*other, *end)
+                });
+            }
+        }
+    }
+    pairs
+}
+
+/// One end of a possible bridge: where it is and which way the pen was going (none for a dot).
+#[derive(Clone, Copy)]
+struct BridgeEnd {
+    at: Point,
+    outward: Option<Vec2>,
+}
+
+/// How a bridge would be drawn and what it costs.
+struct BridgeShape {
+    cost: f64,
+    /// The length of the drawn bridge (through its corner, if it has one), rim to rim.
+    length: f64,
+    corner: Option<Point>,
+}
+
+/// The way the pen most plausibly went across a gap between two ends, if any, and its cost.
+///
+/// DECISION: good continuation, in two shapes.
+/// - **Straight**: the chord between the ends, when neither end turns by more than
+///   [`MAX_STRAIGHT_TURN_DEGREES`] to follow it. Its cost is its length times
+///   exp(k·(θa² + θb²)), θ the turn at each end in radians: turning costs much more than length,
+///   so an end takes a straight partner up to about 1.5 times farther over one that turns by 35°
+///   or more, and strokes side by side are joined along their lines, not across the space
+///   between them.
+/// - **Corner**: when the two ends turn more than [`MIN_CORNER_TURN_DEGREES`] and the lines they
+///   were drawn along meet ahead of both, the pen lifted at a corner: the bridge runs from each
+///   end straight on to that meeting point (the corner, which is thus put back), and costs its
+///   length, since neither end turns.
+///
+/// Ends whose lines do not meet ahead and that would turn sharply (two parallel lines ending side
+/// by side, the two ends of a U) are not a continuation: no bridge.
+fn bridge_shape(a: BridgeEnd, b: BridgeEnd, rims: f64, stroke_width: f64) -> Option<BridgeShape> {
+    let chord = b.at - a.at;
+    let distance = chord.hypot();
+    let unit = if distance > 0.0 {
+        chord / distance
+    } else {
+        Vec2::ZERO
+    };
+    let turn = |outward: Option<Vec2>, direction: Vec2| -> f64 {
+        outward.map_or(0.0, |o| o.dot(direction).clamp(-1.0, 1.0).acos())
+    };
+    let (turn_a, turn_b) = (turn(a.outward, unit), turn(b.outward, -unit));
+    let straight_limit = MAX_STRAIGHT_TURN_DEGREES.to_radians();
+    let straight = (turn_a <= straight_limit && turn_b <= straight_limit).then(|| {
+        let length = (distance - rims).max(0.0);
+        BridgeShape {
+            cost: length * (TURN_COST * (turn_a * turn_a + turn_b * turn_b)).exp(),
+            length,
+            corner: None,
+        }
+    });
+    let corner_limit = MIN_CORNER_TURN_DEGREES.to_radians();
+    let corner = if turn_a.max(turn_b) > corner_limit {
+        let meeting = a
+            .outward
+            .zip(b.outward)
+            .and_then(|(ua, ub)| rays_meet(a.at, ua, b.at, ub));
+        // DECISION: an end whose line runs into the ink of the other end (the centre line within
+        // a pen width of that end: half for its ink, half for the line's own) reaches the corner
+        // there, whichever way that other end's stroke points: the stroke that reached the corner
+        // first ends on it, and its direction, measured where the tip curls, is the less sure.
+        let end_on = |from: &BridgeEnd, to: &BridgeEnd, turn_to: f64| {
+            let along = from.outward?;
+            let offset = to.at - from.at;
+            (turn_to > corner_limit
+                && offset.dot(along) > 0.0
+                && offset.cross(along).abs() <= stroke_width)
+                .then_some((to.at, distance))
+        };
+        [meeting, end_on(&a, &b, turn_b), end_on(&b, &a, turn_a)]
+            .into_iter()
+            .flatten()
+            .min_by(|x, y| x.1.total_cmp(&y.1))
+            .map(|(corner, length)| BridgeShape {
+                cost: length,
+                length,
+                corner: Some(corner),
+            })
+    } else {
+        None
+    };
+    match (straight, corner) {
+        (Some(s), Some(c)) => Some(if c.cost < s.cost { c } else { s }),
+        (s, c) => s.or(c),
+    }
+}
+
+/// Where the rays from `a` along `ua` and from `b` along `ub` meet ahead of both, and the length
+/// of the path a → meeting point → b; none for (nearly) parallel rays.
+fn rays_meet(a: Point, ua: Vec2, b: Point, ub: Vec2) -> Option<(Point, f64)> {
+    let denominator = ua.cross(ub);
+    if denominator.abs() < MIN_RAY_CROSSING_SINE {
+        return None;
+    }
+    let d = b - a;
+    let (s, t) = (d.cross(ub) / denominator, d.cross(ua) / denominator);
+    // A stroke that runs right up to the corner ends on it: its ray starts at the meeting point,
+    // give or take the skeleton's wobble. The corner is then that end itself.
+    let slack = CORNER_AT_END_SLACK * d.hypot();
+    if s < -slack || t < -slack {
+        return None;
+    }
+    let corner = if s <= 0.0 {
+        a
+    } else if t <= 0.0 {
+        b
+    } else {
+        a + ua * s
+    };
+    Some((corner, a.distance(corner) + corner.distance(b)))
 }
 
 /// Strokes joined by accepted bridges, with the total length of each group (strokes plus

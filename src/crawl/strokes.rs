@@ -10,13 +10,12 @@
 //! decides, with the paper's seeds, candidates, `d > d1` stop and a closing rule, how the strokes
 //! chain into shapes. [`Method::Points`] keeps the paper's plain crawl for comparison.
 
-use std::collections::{HashMap, HashSet};
+use std::collections::{HashMap, HashSet, VecDeque};
 
-use kurbo::Point;
+use kurbo::{Point, Vec2};
 
-use super::algorithm::{crawl, Chain, ChainEnds};
-use super::bridges::{match_gap_bridges, FreeEnd};
-use super::neighbours::NeighbourGraph;
+use super::algorithm::Chain;
+use super::bridges::{match_gap_bridges, BridgeableEnd};
 use super::reconstruct::{self, canonical_orientation};
 use crate::geometry::polyline::polyline_length;
 use crate::geometry::Polyline;
@@ -44,11 +43,71 @@ const END_EXTENSION_IN_PEN_WIDTHS: f64 = 0.5;
 /// [`StrokeVertices::new`]).
 const DOT_MAX_LENGTH_IN_SPACINGS: f64 = 2.0;
 
-/// The direction in which the pen left a stroke end is measured this many samples in: the last
-/// sample alone wobbles.
-const END_DIRECTION_REACH_IN_SAMPLES: usize = 2;
+/// The direction in which the pen left a stroke end is measured over this length of the stroke
+/// (and the turn over the next as much, to correct for its curvature).
+const END_DIRECTION_REACH_IN_SPACINGS: f64 = 1.0;
 
-/// The paper's closing condition: a chain closes only with more than this many edges.
+/// ... starting this many pen widths in from the end: within half a pen width of its end the
+/// skeleton of a stroke is the thinned round cap of the pen, which hooks to either side (and at a
+/// sharp corner drawn up to its tip, along the other arm).
+const END_DIRECTION_SKIP_IN_PEN_WIDTHS: f64 = 0.5;
+
+/// A stroke turning by more than this (radians) over its last two reaches has a corner there: its
+/// end direction is not extrapolated through it.
+const MAX_EXTRAPOLATED_TURN: f64 = std::f64::consts::FRAC_PI_3;
+
+/// The unit direction in which the pen was moving when it left the stroke at `points[0]` (the
+/// points ordered from that end inwards): the chord over `reach` of the stroke that starts `skip`
+/// in from the end (at most a third of the stroke in), turned on by the turn the stroke makes
+/// per length over the next `reach` times the distance back to the end, so that the end of an arc
+/// points along its tangent, not along a chord that lags behind it. `None` for a stroke of one
+/// point.
+fn end_direction(points: &[Point], reach: f64, skip: f64) -> Option<Vec2> {
+    let length = polyline_length(points, false);
+    let skip = skip.min(length / 3.0);
+    let start = point_at_length(points, skip);
+    let near = point_at_length(points, skip + reach);
+    let chord = start - near;
+    if chord.hypot() == 0.0 {
+        let whole = *points.first()? - *points.last()?;
+        return (whole.hypot() > 0.0).then(|| whole / whole.hypot());
+    }
+    let far = point_at_length(points, skip + 2.0 * reach);
+    let previous = near - far;
+    let mut direction = chord / chord.hypot();
+    if previous.hypot() > 0.25 * chord.hypot() {
+        let turn = previous.cross(chord).atan2(previous.dot(chord));
+        if turn.abs() < MAX_EXTRAPOLATED_TURN {
+            // The turn between the two chords happens over about one reach; the tangent at the
+            // end lies skip + half a reach beyond the middle of the near chord.
+            let extrapolated = turn * (skip + 0.5 * chord.hypot()) / chord.hypot().max(1e-9);
+            let (sin, cos) = extrapolated
+                .clamp(-MAX_EXTRAPOLATED_TURN, MAX_EXTRAPOLATED_TURN)
+                .sin_cos();
+            direction = Vec2::new(
+                direction.x * cos - direction.y * sin,
+                direction.x * sin + direction.y * cos,
+            );
+        }
+    }
+    Some(direction)
+}
+
+/// The point `length` along the polyline from its first point (its last point if it is shorter).
+fn point_at_length(points: &[Point], length: f64) -> Point {
+    let mut left = length;
+    for pair in points.windows(2) {
+        let step = pair[0].distance(pair[1]);
+        if step >= left && step > 0.0 {
+            return pair[0].lerp(pair[1], left / step);
+        }
+        left -= step;
+    }
+    *points.last().expect("at least one point")
+}
+
+/// The paper's closing condition, kept for cycles of strokes and bridges: a curve is closed only
+/// with more than this many edges.
 const MIN_EDGES_BEFORE_CLOSING: usize = 2;
 
 /// The length below which [`connect`] drops a curve as a stray mark, for a pen of `stroke_width`
@@ -63,18 +122,20 @@ pub fn end_extension(stroke_width: f64) -> f64 {
     END_EXTENSION_IN_PEN_WIDTHS * stroke_width
 }
 
-/// Connects sampled strokes into curves with `method`. `spacing` is the sample spacing; curves
-/// shorter than `minimum_length` are dropped as stray marks; the free ends of open curves are
-/// extended by `end_extension` (thinning erodes every stroke end by half a pen width).
+/// Connects sampled strokes into curves with `method`. `spacing` is the sample spacing and
+/// `stroke_width` the pen width in pixels: curves shorter than [`minimum_curve_length`] are dropped
+/// as stray marks, and the free ends of open curves are extended by [`end_extension`] (thinning
+/// erodes every stroke end by half a pen width).
 pub fn connect(
     strokes: &[Stroke],
     method: Method,
     spacing: f64,
-    minimum_length: f64,
-    end_extension: f64,
+    stroke_width: f64,
 ) -> Vec<Polyline> {
+    let minimum_length = minimum_curve_length(stroke_width);
+    let end_extension = end_extension(stroke_width);
     let curves = match method {
-        Method::Strokes => connect_strokes(strokes, spacing),
+        Method::Strokes => connect_strokes(strokes, spacing, stroke_width),
         Method::Points => crawl_all_samples(strokes),
     };
     // A set, not a list: a page of noise has about as many attachment points as curves, and a
@@ -210,18 +271,18 @@ impl StrokeVertices {
 /// the strokes' vertices.
 struct StrokeGraph {
     edges: Vec<(u32, u32)>,
-    free_ends: Vec<FreeEnd>,
-    /// Points where a chain ending at this vertex should be extended to (T-junctions).
-    attachment: HashMap<u32, Point>,
+    /// Free ends and T-ends.
+    ends: Vec<BridgeableEnd>,
 }
 
 impl StrokeGraph {
-    fn new(strokes: &[Stroke], vertices: &StrokeVertices) -> Self {
+    fn new(strokes: &[Stroke], vertices: &StrokeVertices, spacing: f64, stroke_width: f64) -> Self {
+        let reach = END_DIRECTION_REACH_IN_SPACINGS * spacing;
+        let skip = END_DIRECTION_SKIP_IN_PEN_WIDTHS * stroke_width;
         let positions = &vertices.positions;
         let mut graph = Self {
             edges: Vec::new(),
-            free_ends: Vec::new(),
-            attachment: HashMap::new(),
+            ends: Vec::new(),
         };
         for (s, (stroke, of_stroke)) in strokes.iter().zip(&vertices.of_stroke).enumerate() {
             graph
@@ -236,26 +297,24 @@ impl StrokeGraph {
             let (Some(&first), Some(&last)) = (of_stroke.first(), of_stroke.last()) else {
                 continue;
             };
-            let n = of_stroke.len();
-            // Measured a few samples in, where there are that many.
-            let reach = END_DIRECTION_REACH_IN_SAMPLES;
-            let inner = [
-                of_stroke[(n - 1).min(reach)],
-                of_stroke[n.saturating_sub(reach + 1)],
+            let along: Vec<Point> = of_stroke.iter().map(|&v| positions[v as usize]).collect();
+            let reversed: Vec<Point> = along.iter().rev().copied().collect();
+            let outward = [
+                end_direction(&along, reach, skip),
+                end_direction(&reversed, reach, skip),
             ];
-            for ((end, vertex), inner) in stroke.ends.iter().zip([first, last]).zip(inner) {
-                let direction = positions[vertex as usize] - positions[inner as usize];
-                let outward = (direction.hypot() > 0.0).then(|| direction / direction.hypot());
-                match *end {
-                    StrokeEnd::Free => graph.free_ends.push(FreeEnd {
-                        vertex,
-                        stroke: s,
-                        outward,
-                    }),
-                    StrokeEnd::Attached(point) => {
-                        graph.attachment.insert(vertex, point);
-                    }
-                }
+            for ((end, vertex), outward) in stroke.ends.iter().zip([first, last]).zip(outward) {
+                let (at, attached) = match *end {
+                    StrokeEnd::Free => (positions[vertex as usize], false),
+                    StrokeEnd::Attached(junction) => (junction, true),
+                };
+                graph.ends.push(BridgeableEnd {
+                    vertex,
+                    stroke: s,
+                    outward,
+                    at,
+                    attached,
+                });
             }
         }
         graph
@@ -263,31 +322,87 @@ impl StrokeGraph {
 }
 
 /// The crawl on stroke edges and bridges (see the module documentation).
-pub fn connect_strokes(strokes: &[Stroke], spacing: f64) -> Vec<Polyline> {
+pub fn connect_strokes(strokes: &[Stroke], spacing: f64, stroke_width: f64) -> Vec<Polyline> {
     let vertices = StrokeVertices::new(strokes, spacing);
     let positions = &vertices.positions;
-    let Ok(delaunay) = NeighbourGraph::delaunay(positions) else {
-        return Vec::new(); // pixel coordinates are always finite and in range
-    };
-    let StrokeGraph {
-        mut edges,
-        free_ends,
-        attachment,
-    } = StrokeGraph::new(strokes, &vertices);
-    edges.extend(match_gap_bridges(&vertices, &delaunay, &free_ends, spacing));
-    let graph = NeighbourGraph::from_edges(positions, edges);
-
-    // Closing: the two extremities must be joined by a stroke edge or an accepted bridge. The
-    // graph only holds plausible connections, so this is the paper's "second-nearest" rule with
-    // the neighbours that are not plausible left out.
-    let chains = crawl(positions, &graph, |ends: &ChainEnds| {
-        ends.edge_count > MIN_EDGES_BEFORE_CLOSING && graph.has_edge(ends.front, ends.back)
-    });
-    chains
+    let StrokeGraph { mut edges, ends } =
+        StrokeGraph::new(strokes, &vertices, spacing, stroke_width);
+    let bridges = match_gap_bridges(&vertices, &ends, spacing, stroke_width);
+    let bridged: HashSet<u32> = bridges.iter().flat_map(|b| [b.a, b.b]).collect();
+    // T-ends that took no bridge end on the stroke they ran into.
+    let attachment: HashMap<u32, Point> = ends
+        .iter()
+        .filter(|end| end.attached && !bridged.contains(&end.vertex))
+        .map(|end| (end.vertex, end.at))
+        .collect();
+    edges.extend(bridges.iter().map(|bridge| (bridge.a, bridge.b)));
+    let vias: HashMap<(u32, u32), Vec<Point>> = bridges
+        .into_iter()
+        .filter(|bridge| !bridge.via.is_empty())
+        .map(|bridge| ((bridge.a, bridge.b), bridge.via))
+        .collect();
+    // DECISION: no `d > d1` stop here. Every vertex of the stroke + bridge graph has at most two
+    // edges (a stroke's own, and one bridge per free end), so its components are already paths
+    // and cycles: the shapes. The paper's stop would only cut a chain where an outline comes back
+    // near itself (an '8', a narrow neck); which gaps close is decided by the bridges alone.
+    components(positions.len(), &edges)
         .into_iter()
         .filter(|chain| chain.vertices.len() >= 2)
-        .map(|chain| chain_to_curve(chain, &vertices, &attachment))
+        .map(|chain| chain_to_curve(chain, &vertices, &attachment, &vias))
         .collect()
+}
+
+/// The connected components of a graph whose vertices have at most two edges: cycles (of at
+/// least [`MIN_EDGES_BEFORE_CLOSING`] + 1 edges) come out closed, paths open, single vertices as
+/// one-vertex chains. Deterministic: components are found in vertex order. An edge that would give
+/// a vertex a third neighbour (never made by the stroke graph) is ignored.
+fn components(vertex_count: usize, edges: &[(u32, u32)]) -> Vec<Chain> {
+    let mut adjacent: Vec<[u32; 2]> = vec![[u32::MAX; 2]; vertex_count];
+    let mut degree = vec![0u8; vertex_count];
+    for &(a, b) in edges {
+        let (ua, ub) = (a as usize, b as usize);
+        if a == b || degree[ua] >= 2 || degree[ub] >= 2 || adjacent[ua].contains(&b) {
+            continue;
+        }
+        adjacent[ua][degree[ua] as usize] = b;
+        adjacent[ub][degree[ub] as usize] = a;
+        degree[ua] += 1;
+        degree[ub] += 1;
+    }
+    let mut visited = vec![false; vertex_count];
+    let walk = |start: u32, visited: &mut Vec<bool>| -> VecDeque<u32> {
+        let mut chain = VecDeque::from([start]);
+        visited[start as usize] = true;
+        let mut current = start;
+        while let Some(&next) = adjacent[current as usize][..degree[current as usize] as usize]
+            .iter()
+            .find(|&&w| !visited[w as usize])
+        {
+            visited[next as usize] = true;
+            chain.push_back(next);
+            current = next;
+        }
+        chain
+    };
+    let mut chains = Vec::new();
+    // Paths first, from one of their ends; what is left of degree two lies on cycles.
+    for v in 0..vertex_count {
+        if !visited[v] && degree[v] <= 1 {
+            let vertices = walk(v as u32, &mut visited);
+            chains.push(Chain {
+                vertices,
+                closed: false,
+            });
+        }
+    }
+    for v in 0..vertex_count {
+        if !visited[v] {
+            let vertices = walk(v as u32, &mut visited);
+            let closed = vertices.len() > MIN_EDGES_BEFORE_CLOSING;
+            chains.push(Chain { vertices, closed });
+        }
+    }
+    chains
 }
 
 /// The curve of a chain: its vertices' positions with every dot drawn back as its dash, and an
@@ -296,11 +411,25 @@ fn chain_to_curve(
     chain: Chain,
     vertices: &StrokeVertices,
     attachment: &HashMap<u32, Point>,
+    vias: &HashMap<(u32, u32), Vec<Point>>,
 ) -> Polyline {
     let positions = &vertices.positions;
     let order = canonical_orientation(chain.vertices, chain.closed);
     let mut points = Vec::with_capacity(order.len() + 2);
+    // The points a bridge goes through, in the order the chain crosses it.
+    let via_between = |a: u32, b: u32| -> Vec<Point> {
+        if let Some(via) = vias.get(&(a, b)) {
+            via.clone()
+        } else if let Some(via) = vias.get(&(b, a)) {
+            via.iter().rev().copied().collect()
+        } else {
+            Vec::new()
+        }
+    };
     for (k, &v) in order.iter().enumerate() {
+        if k > 0 {
+            points.extend(via_between(order[k - 1], v));
+        }
         let Some(&(a, b)) = vertices.dot_dash.get(&v) else {
             points.push(positions[v as usize]);
             continue;
@@ -320,6 +449,9 @@ fn chain_to_curve(
         if second != first {
             points.push(second);
         }
+    }
+    if chain.closed && order.len() > 2 {
+        points.extend(via_between(order[order.len() - 1], order[0]));
     }
     if !chain.closed {
         if let Some(&p) = attachment.get(&order[0]) {
@@ -402,7 +534,7 @@ mod tests {
     fn a_skip_stroke_circle_becomes_one_closed_curve() {
         let strokes = skip_stroke_circle((100.0, 100.0), 60.0, 40.0, 5.0);
         assert_eq!(strokes.len(), 8);
-        let curves = connect(&strokes, Method::Strokes, 4.0, 6.0, 0.0);
+        let curves = connect(&strokes, Method::Strokes, 4.0, 3.0);
         assert_eq!(curves.len(), 1, "{curves:?}");
         assert!(curves[0].closed);
         let total: usize = strokes.iter().map(|s| s.line.points.len()).sum();
@@ -415,7 +547,7 @@ mod tests {
         // A mouth of two strokes with a small gap, its corners 30 px from the outline's gaps.
         strokes.push(arc((100.0, 90.0), 50.0, 40.0, 88.0, 4.0));
         strokes.push(arc((100.0, 90.0), 50.0, 92.0, 140.0, 4.0));
-        let curves = connect(&strokes, Method::Strokes, 4.0, 6.0, 0.0);
+        let curves = connect(&strokes, Method::Strokes, 4.0, 3.0);
         assert_eq!(curves.len(), 2, "{curves:?}");
         let closed: Vec<bool> = curves.iter().map(|c| c.closed).collect();
         assert!(
@@ -431,11 +563,13 @@ mod tests {
 
     #[test]
     fn two_open_strokes_far_apart_are_not_bridged() {
+        // 44 px apart on one line: a 41 px gap on paper with a 3 px pen, beyond twice the largest
+        // typical gap (three spacings).
         let strokes = vec![
             open(&[(0.0, 0.0), (4.0, 0.0), (8.0, 0.0), (12.0, 0.0), (16.0, 0.0)]),
-            open(&[(40.0, 0.0), (44.0, 0.0), (48.0, 0.0), (52.0, 0.0)]),
+            open(&[(60.0, 0.0), (64.0, 0.0), (68.0, 0.0), (72.0, 0.0)]),
         ];
-        let curves = connect(&strokes, Method::Strokes, 4.0, 6.0, 0.0);
+        let curves = connect(&strokes, Method::Strokes, 4.0, 3.0);
         assert_eq!(curves.len(), 2, "{curves:?}");
         assert!(curves.iter().all(|c| !c.closed));
     }
@@ -453,22 +587,77 @@ mod tests {
             (16.0, 14.0),
             (20.0, 14.0),
         ]);
-        let curves = connect(&[bar, stem], Method::Strokes, 4.0, 6.0, 0.0);
+        let curves = connect(&[bar, stem], Method::Strokes, 4.0, 3.0);
         assert_eq!(curves.len(), 2, "{curves:?}");
         let stem = curves.iter().find(|c| c.points.len() == 12).expect("stem");
         assert!(stem.points.contains(&Point::new(10.0, 14.0)), "{stem:?}");
     }
 
+    /// Dashes `dash` long with gaps `gap` between them, sampled every 4 px, along the polyline
+    /// through `corners`.
+    fn dashes(corners: &[(f64, f64)], dash: f64, gap: f64) -> Vec<Stroke> {
+        let corners: Vec<Point> = corners.iter().map(|&(x, y)| Point::new(x, y)).collect();
+        let line = Polyline::new(corners, false);
+        let total = line.length();
+        let at = |distance: f64| {
+            let mut left = distance;
+            for pair in line.points.windows(2) {
+                let length = pair[0].distance(pair[1]);
+                if left <= length {
+                    return pair[0] + (pair[1] - pair[0]) * (left / length);
+                }
+                left -= length;
+            }
+            line.points[line.points.len() - 1]
+        };
+        let mut strokes = Vec::new();
+        let mut start = 0.0;
+        while start < total {
+            let end = (start + dash).min(total);
+            let count = ((end - start) / 4.0).ceil() as usize;
+            let points: Vec<(f64, f64)> = (0..=count)
+                .map(|k| at(start + (end - start) * k as f64 / count as f64))
+                .map(|p| (p.x, p.y))
+                .collect();
+            strokes.push(open(&points));
+            start = end + gap;
+        }
+        strokes
+    }
+
+    #[test]
+    fn a_sharp_tip_closes_where_one_side_runs_into_the_other_sides_end() {
+        // A 10° tip whose gap is just below it on the right side: the left side reaches the tip
+        // with its end direction 4° off (as where a thinned tip curls), the right side's line runs
+        // straight into the tip. Their rays meet 14 px above the tip, too far for a bridge; the
+        // tip itself is where the right side ends.
+        let tip = (160.0, 134.0);
+        let left_foot = (160.0 - 0.065 * 160.0, 134.0 + 0.998 * 160.0);
+        let right_end = (164.4, 149.6);
+        let right_foot = (164.4 + 0.174 * 146.3, left_foot.1);
+        let strokes = dashes(&[tip, left_foot, right_foot, right_end], 40.0, 6.0);
+        assert!(strokes.len() > 6, "{}", strokes.len());
+        let curves = connect(&strokes, Method::Strokes, 4.0, 3.0);
+        assert_eq!(curves.len(), 1, "{curves:?}");
+        assert!(curves[0].closed, "{curves:?}");
+        let highest = curves[0]
+            .points
+            .iter()
+            .map(|p| p.y)
+            .fold(f64::MAX, f64::min);
+        assert!((highest - tip.1).abs() < 3.0, "the tip is at {highest}");
+    }
+
     #[test]
     fn stray_marks_are_dropped() {
         let strokes = vec![open(&[(0.0, 0.0), (2.0, 0.0)])];
-        assert!(connect(&strokes, Method::Strokes, 4.0, 6.0, 0.0).is_empty());
+        assert!(connect(&strokes, Method::Strokes, 4.0, 3.0).is_empty());
     }
 
     #[test]
     fn the_paper_method_also_runs() {
         let strokes = skip_stroke_circle((100.0, 100.0), 60.0, 40.0, 3.0);
-        let curves = connect(&strokes, Method::Points, 4.0, 6.0, 0.0);
+        let curves = connect(&strokes, Method::Points, 4.0, 3.0);
         assert!(!curves.is_empty());
     }
 }

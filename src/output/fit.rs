@@ -26,6 +26,9 @@ pub struct CurvePath {
     pub path: BezPath,
     /// Whether the curve is closed.
     pub closed: bool,
+    /// The path's own stroke width, when it differs from the drawing's (a dot as wide as its
+    /// ink).
+    pub stroke_width: Option<f64>,
 }
 
 impl CurvePath {
@@ -45,6 +48,20 @@ impl CurvePath {
         Self {
             path,
             closed: closed && points.len() > 2,
+            stroke_width: None,
+        }
+    }
+
+    /// A dot: a zero-length path at `centre` (drawn by the round cap as a disc `diameter`
+    /// wide).
+    pub fn dot(centre: Point, diameter: f64) -> Self {
+        let mut path = BezPath::new();
+        path.move_to(centre);
+        path.line_to(centre);
+        Self {
+            path,
+            closed: false,
+            stroke_width: Some(diameter),
         }
     }
 }
@@ -57,9 +74,16 @@ pub fn fit_paths(curves: &[Polyline], options: &FitOptions) -> Vec<CurvePath> {
         .map(|curve| CurvePath {
             path: fit_curve(curve, options),
             closed: curve.closed,
+            stroke_width: None,
         })
         .collect();
-    // Stable order for the SVG: by the path's first point, top to bottom, then left to right.
+    sort_paths(&mut paths);
+    paths
+}
+
+/// Puts paths in the SVG's stable order: by the path's first point, top to bottom, then left to
+/// right.
+pub fn sort_paths(paths: &mut [CurvePath]) {
     paths.sort_by(|a, b| {
         let key = |p: &CurvePath| {
             p.path
@@ -71,7 +95,6 @@ pub fn fit_paths(curves: &[Polyline], options: &FitOptions) -> Vec<CurvePath> {
         let (ka, kb) = (key(a), key(b));
         ka.y.total_cmp(&kb.y).then(ka.x.total_cmp(&kb.x))
     });
-    paths
 }
 
 /// DECISION: by default a path may stray from the reconstructed polyline by a quarter of the pen

@@ -76,6 +76,11 @@ pub enum RenderError {
 /// at scale 2.
 pub const DEFAULT_MAX_PIXELS: u64 = 64_000_000;
 
+/// A raster side within this much (pixels) above a whole number is that number: a size in mm or
+/// inches (`width="52.9167mm"`, 200 px at 96 dpi) comes back from usvg's f32 arithmetic a hair
+/// above the pixel count it was written from, and must not gain a row of pixels.
+const SIZE_ROUNDING_SLACK: f32 = 0.01;
+
 /// DECISION: the most pixel operations a render may take, about four seconds on one core of the
 /// development machine (an operation is about a nanosecond: a morphology of radius 50 on 200 ×
 /// 200 pixels, 4 × 10⁸ operations, took 0.42 s; a blur over 23 megapixels, 1.9 × 10⁹, 2.2 s).
@@ -269,7 +274,11 @@ fn canvas_size(tree: &usvg::Tree, options: &RenderOptions) -> Result<(u32, u32),
         f64::from(size.width()) * f64::from(scale),
         f64::from(size.height()) * f64::from(scale),
     );
-    let side = |length: f64| length.ceil().min(f64::from(u32::MAX)) as u32;
+    let side = |length: f64| {
+        (length - f64::from(SIZE_ROUNDING_SLACK))
+            .ceil()
+            .min(f64::from(u32::MAX)) as u32
+    };
     let (width, height) = (side(width), side(height));
     if !(scale.is_finite() && scale > 0.0) || width == 0 || height == 0 {
         return Err(RenderError::Size {
@@ -451,5 +460,16 @@ mod tests {
         assert!(render_svg(&nested(20), 1.0).is_ok());
         let error = render_svg(&nested(20), 30.0).unwrap_err();
         assert!(matches!(error, RenderError::TooCostly { .. }), "{error}");
+    }
+
+    #[test]
+    fn physical_sizes_render_at_their_pixel_count() {
+        // 200 × 150 px at 96 dpi, written in mm with four decimals.
+        let svg = r#"<svg xmlns="http://www.w3.org/2000/svg" width="52.9167mm" height="39.6875mm" viewBox="0 0 200 150"/>"#;
+        assert_eq!(render_svg(svg, 1.0).unwrap().dimensions(), (200, 150));
+        assert_eq!(render_svg(svg, 2.0).unwrap().dimensions(), (400, 300));
+        // A real fraction still rounds up.
+        let svg = r#"<svg xmlns="http://www.w3.org/2000/svg" width="20.5" height="10"/>"#;
+        assert_eq!(render_svg(svg, 1.0).unwrap().dimensions(), (21, 10));
     }
 }

@@ -1,12 +1,14 @@
 //! Writes a [`Drawing`] as SVG text, following the conventions of `docs/design.md` ("SVG
 //! conventions"): viewBox in pixels, one `<path>` per curve, `Z` on closed curves, at most two
-//! decimals, byte-identical output for identical input.
+//! decimals, byte-identical output for identical input; `width`/`height` in pixels, or in mm or
+//! inches at a given density ([`to_svg_with_size`]).
 
 use std::fmt::Write as _;
 
 use kurbo::{BezPath, PathEl, Point};
 
 pub use super::fit::CurvePath;
+use super::units::PhysicalSize;
 
 /// Vector curves on a canvas, ready to be written as SVG.
 #[derive(Clone, Debug, PartialEq)]
@@ -128,12 +130,58 @@ pub fn path_data(path: &BezPath) -> String {
 ///
 /// None: every drawing can be written (the text is built in memory).
 pub fn to_svg(drawing: &Drawing) -> String {
-    let width = format_number(drawing.width);
-    let height = format_number(drawing.height);
+    write_svg(
+        drawing,
+        &format_number(drawing.width),
+        &format_number(drawing.height),
+    )
+}
+
+/// Physical sizes (`width="210mm"`) are written with this many decimals: a tenth of a micrometre
+/// in millimetres, 2.5 µm in inches, finer than any cutter or plotter moves.
+const PHYSICAL_DECIMALS: usize = 4;
+
+/// Writes `drawing` as [`to_svg`] does, but with `width` and `height` in physical units
+/// (`210mm`, `8.2677in`) at `size`'s density; the `viewBox` and every coordinate stay in pixels,
+/// so only the size the SVG is shown, printed or cut at changes.
+///
+/// # Examples
+///
+/// ```
+/// use crawltrace::stages::units::{PhysicalSize, Units};
+/// use crawltrace::{to_svg_with_size, Drawing};
+///
+/// let drawing = Drawing {
+///     width: 600.0,
+///     height: 300.0,
+///     paths: Vec::new(),
+///     stroke_width: 2.0,
+///     color: "black".into(),
+///     dots: Vec::new(),
+///     points: Vec::new(),
+/// };
+/// // 600 px at 300 dpi are 2 inches, 50.8 mm.
+/// let svg = to_svg_with_size(&drawing, &PhysicalSize { dpi: 300.0, units: Units::Mm });
+/// assert!(svg.contains(r#"width="50.8mm" height="25.4mm" viewBox="0 0 600 300""#));
+/// ```
+pub fn to_svg_with_size(drawing: &Drawing, size: &PhysicalSize) -> String {
+    let physical = |pixels: f64| {
+        let mut text = format!("{:.PHYSICAL_DECIMALS$}", size.length(pixels));
+        let trimmed = text.trim_end_matches('0').trim_end_matches('.').len();
+        text.truncate(trimmed);
+        format!("{text}{}", size.units.name())
+    };
+    write_svg(drawing, &physical(drawing.width), &physical(drawing.height))
+}
+
+/// The SVG document of `drawing` with the given `width` and `height` attributes.
+fn write_svg(drawing: &Drawing, width: &str, height: &str) -> String {
     let mut svg = String::new();
     let _ = writeln!(
         svg,
-        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" viewBox="0 0 {width} {height}">"#
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" viewBox="0 0 {} {}">"#,
+        format_number(drawing.width),
+        format_number(drawing.height),
     );
     let _ = writeln!(
         svg,
@@ -142,7 +190,19 @@ pub fn to_svg(drawing: &Drawing) -> String {
         format_number(drawing.stroke_width.max(MIN_SIZE)),
     );
     for curve in &drawing.paths {
-        let _ = writeln!(svg, r#"<path d="{}"/>"#, path_data(&curve.path));
+        match curve.stroke_width {
+            Some(width) => {
+                let _ = writeln!(
+                    svg,
+                    r#"<path stroke-width="{}" d="{}"/>"#,
+                    format_number(width.max(MIN_SIZE)),
+                    path_data(&curve.path)
+                );
+            }
+            None => {
+                let _ = writeln!(svg, r#"<path d="{}"/>"#, path_data(&curve.path));
+            }
+        }
     }
     svg.push_str("</g>\n");
     write_dots(
@@ -189,6 +249,7 @@ fn escape_attribute(value: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::output::units::Units;
 
     #[test]
     fn numbers_have_at_most_two_decimals_and_no_negative_zero() {
@@ -243,5 +304,48 @@ mod tests {
         assert_eq!(svg.matches('Z').count(), 1);
         let tree = usvg::Tree::from_str(&svg, &usvg::Options::default()).expect("usvg parses it");
         assert_eq!(tree.size().width(), 40.0);
+    }
+
+    /// usvg, like browsers, takes 96 CSS pixels to the inch: the size it reads back is the
+    /// physical size asked for.
+    #[test]
+    fn physical_sizes_read_back_with_usvg() {
+        let drawing = Drawing {
+            width: 2480.0,
+            height: 3508.0,
+            paths: vec![CurvePath::polyline(
+                &[Point::new(10.0, 10.0), Point::new(2000.0, 3000.0)],
+                false,
+            )],
+            stroke_width: 3.0,
+            color: "black".into(),
+            dots: vec![],
+            points: vec![],
+        };
+        for (units, dpi) in [(Units::Mm, 300.0), (Units::In, 300.0), (Units::Mm, 96.0)] {
+            let svg = to_svg_with_size(&drawing, &PhysicalSize { dpi, units });
+            assert!(svg.contains(r#"viewBox="0 0 2480 3508""#), "{svg}");
+            let tree = usvg::Tree::from_str(&svg, &usvg::Options::default()).unwrap();
+            let css_pixels_per_image_pixel = 96.0 / dpi;
+            let expected_width = 2480.0 * css_pixels_per_image_pixel;
+            let expected_height = 3508.0 * css_pixels_per_image_pixel;
+            assert!(
+                (f64::from(tree.size().width()) - expected_width).abs() < 0.01,
+                "{units}: {} vs {expected_width}",
+                tree.size().width()
+            );
+            assert!((f64::from(tree.size().height()) - expected_height).abs() < 0.01);
+        }
+        let a4 = to_svg_with_size(
+            &drawing,
+            &PhysicalSize {
+                dpi: 300.0,
+                units: Units::Mm,
+            },
+        );
+        assert!(
+            a4.contains(r#"width="209.9733mm" height="297.0107mm""#),
+            "{a4}"
+        );
     }
 }

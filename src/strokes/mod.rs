@@ -6,6 +6,7 @@
 //! (the paper's §4.3 "T-junctions" limitation); resolving junctions here, where the ink shows
 //! which branches belong together, leaves it only chains to connect.
 
+mod dots;
 mod graph;
 mod junctions;
 mod prune;
@@ -17,6 +18,7 @@ use crate::geometry::Polyline;
 use crate::raster::bitmap::Bitmap;
 use graph::SkeletonGraph;
 
+pub use dots::{split_dots, Dot};
 pub(crate) use sample::MIN_LOOP_SAMPLES;
 pub use sample::{
     default_spacing, minimum_spacing, sample_strokes, simplification_tolerance, MIN_SPACING_PX,

@@ -22,29 +22,39 @@ pub struct Indexed {
 
 impl Indexed {
     pub fn new(polyline: &Polyline) -> Self {
-        let mut vertices = polyline.points.clone();
-        if polyline.closed && vertices.len() > 1 {
-            vertices.push(vertices[0]);
-        }
-        if vertices.len() == 1 {
-            vertices.push(vertices[0]);
-        }
-        let segments: Vec<(Point, Point)> =
-            vertices.windows(2).map(|pair| (pair[0], pair[1])).collect();
-        let mut samples = vec![vertices[0]];
-        for &(from, to) in &segments {
-            let steps = ((from.distance(to) / SAMPLE_STEP).ceil() as usize).max(1);
-            samples.extend((1..=steps).map(|s| from.lerp(to, s as f64 / steps as f64)));
+        Self::union(std::slice::from_ref(polyline))
+    }
+
+    /// Several polylines as one set: distances to it are distances to the nearest of them.
+    pub fn union(polylines: &[Polyline]) -> Self {
+        let mut samples = Vec::new();
+        let mut segments: Vec<(Point, Point)> = Vec::new();
+        for polyline in polylines {
+            let mut vertices = polyline.points.clone();
+            if polyline.closed && vertices.len() > 1 {
+                vertices.push(vertices[0]);
+            }
+            if vertices.len() == 1 {
+                vertices.push(vertices[0]);
+            }
+            let first = segments.len();
+            segments.extend(vertices.windows(2).map(|pair| (pair[0], pair[1])));
+            samples.push(vertices[0]);
+            for &(from, to) in &segments[first..] {
+                let steps = ((from.distance(to) / SAMPLE_STEP).ceil() as usize).max(1);
+                samples.extend((1..=steps).map(|s| from.lerp(to, s as f64 / steps as f64)));
+            }
         }
         let runs = segments
             .chunks(RUN)
             .map(|run| bounding_box(run.iter().flat_map(|&(a, b)| [a, b])))
             .collect();
+        let bounds = bounding_box(segments.iter().flat_map(|&(a, b)| [a, b]));
         Self {
             samples,
             segments,
             runs,
-            bounds: bounding_box(vertices.iter().copied()),
+            bounds,
         }
     }
 
@@ -62,8 +72,26 @@ impl Indexed {
         self.directed(other).max(other.directed(self))
     }
 
-    /// The largest distance from a point of `self` to `other`.
-    fn directed(&self, other: &Indexed) -> f64 {
+    /// The fraction of `self`'s length (its samples) that lies within `tolerance` of `other`.
+    pub fn fraction_within(&self, other: &Indexed, tolerance: f64) -> f64 {
+        if other.segments.is_empty() || self.samples.is_empty() {
+            return 0.0;
+        }
+        let near = self
+            .samples
+            .iter()
+            .filter(|&&point| {
+                (0..other.runs.len()).any(|run| {
+                    box_distance(other.runs[run], point) <= tolerance
+                        && other.run_distance(run, point) <= tolerance
+                })
+            })
+            .count();
+        near as f64 / self.samples.len() as f64
+    }
+
+    /// The largest distance from a point of `self` to `other` (directed Hausdorff distance).
+    pub fn directed(&self, other: &Indexed) -> f64 {
         let mut largest: f64 = 0.0;
         // Neighbouring samples are usually nearest to the same run: try it first.
         let mut hint = 0;

@@ -1,8 +1,11 @@
 //! Shared helpers for the integration tests: curves out of any SVG, ground-truth matching by
-//! Hausdorff distance, and tolerant image comparison with a visual diff in `tests/diffs/`.
+//! Hausdorff distance, the benchmark's truth files and scoring (`bench`), tolerant image
+//! comparison with a visual diff in `tests/diffs/`, and running the binary ([`cli`]).
 // Each test binary includes this module and uses only part of it.
 #![allow(dead_code, unused_imports)]
 
+pub mod bench;
+pub mod cli;
 mod hausdorff;
 mod images;
 mod matching;

@@ -5,11 +5,15 @@ use std::num::{ParseFloatError, ParseIntError};
 use std::path::PathBuf;
 
 use clap::{Parser, Subcommand, ValueEnum};
+use clap_complete::Shell;
 use crawltrace::stages::decode::DEFAULT_MAX_PIXELS;
 use crawltrace::stages::fit::MIN_TOLERANCE_PX;
 use crawltrace::stages::render::DEFAULT_MAX_PIXELS as DEFAULT_RENDER_PIXELS;
 use crawltrace::stages::strokes::MIN_SPACING_PX;
-use crawltrace::{BinarizeOptions, Method, ThresholdMethod, TraceOptions};
+use crawltrace::{
+    BinarizeOptions, ExportOptions, Length, Method, OutputFormat, SizeRequest, ThresholdMethod,
+    TraceOptions, Units, UnitsError,
+};
 
 /// Turn scanned skip-stroke line drawings and 2D point sets into clean SVG curves.
 #[derive(Debug, Parser)]
@@ -23,12 +27,34 @@ pub struct Cli {
 /// The subcommands.
 #[derive(Debug, Subcommand)]
 pub enum Command {
-    /// Trace scanned line drawings (image files or folders of them) into SVG.
-    Trace(TraceArgs),
+    /// Trace scanned line drawings (image files, standard input or folders of them) into SVG or
+    /// DXF.
+    Trace(Box<TraceArgs>),
     /// Reconstruct curves from a point set (one `x y` point a line) and write them as JSON or SVG.
     Points(PointsArgs),
     /// Rasterize an SVG file to PNG with resvg.
     Render(RenderArgs),
+    /// Print a shell completion script (bash, zsh, fish, elvish, powershell) on standard output.
+    Completions(CompletionsArgs),
+    /// Print the manual page (roff) on standard output, or write one page per command into a
+    /// folder.
+    Manpage(ManpageArgs),
+}
+
+/// Arguments of `crawltrace completions`.
+#[derive(Debug, clap::Args)]
+pub struct CompletionsArgs {
+    /// The shell to complete in.
+    #[arg(value_enum)]
+    pub shell: Shell,
+}
+
+/// Arguments of `crawltrace manpage`.
+#[derive(Debug, clap::Args)]
+pub struct ManpageArgs {
+    /// Write `crawltrace.1` and one page per command (`crawltrace-trace.1`, …) into DIR instead.
+    #[arg(long, value_name = "DIR")]
+    pub dir: Option<PathBuf>,
 }
 
 /// Arguments of `crawltrace points`.
@@ -79,13 +105,18 @@ pub struct RenderArgs {
 /// Arguments of `crawltrace trace`.
 #[derive(Debug, clap::Args)]
 pub struct TraceArgs {
-    /// Image files (any format the `image` crate reads) or folders of them.
+    /// Image files (any format the `image` crate reads) or folders of them; `-` reads one image
+    /// from standard input.
     #[arg(required = true, value_name = "INPUT")]
     pub inputs: Vec<PathBuf>,
-    /// Output: for one image, the SVG file (`-` for standard output; default `<stem>.svg` beside
-    /// the input); for several images or a folder, the output folder.
+    /// Output: for one image, the SVG or DXF file (`-` for standard output, the default for
+    /// standard input; else `<stem>.svg` beside the input); for several images or a folder, the
+    /// output folder.
     #[arg(short, long, value_name = "OUT")]
     pub output: Option<PathBuf>,
+    /// Output format (default: from the extension of `-o`, `.dxf` → dxf; else svg).
+    #[arg(long, value_enum)]
+    pub format: Option<FormatArg>,
 
     /// Fixed gray level (0–255) below which a pixel is ink, instead of the automatic threshold.
     #[arg(
@@ -121,6 +152,30 @@ pub struct TraceArgs {
     /// the pen width, at least 0.5; at least 0.01, the SVG's resolution).
     #[arg(long, value_name = "TOL", value_parser = tolerance, help_heading = "Output")]
     pub simplify: Option<f64>,
+    /// Pixels per inch of the image, for the output's physical size (default: the density the
+    /// image file records, else 96).
+    #[arg(
+        long,
+        value_name = "N",
+        value_parser = positive_number,
+        allow_negative_numbers = true,
+        conflicts_with = "size",
+        help_heading = "Size"
+    )]
+    pub dpi: Option<f64>,
+    /// The length of the drawing's longer side (`210mm`, `21cm`, `8in`), instead of a density.
+    #[arg(
+        long,
+        value_name = "LENGTH",
+        value_parser = physical_length,
+        allow_hyphen_values = true,
+        help_heading = "Size"
+    )]
+    pub size: Option<Length>,
+    /// Units of the output's size and DXF coordinates (default: those of `--size`, else mm).
+    #[arg(long, value_enum, help_heading = "Size")]
+    pub units: Option<UnitsArg>,
+
     /// Stroke width of the SVG paths (default: the measured pen width).
     #[arg(long, value_name = "PX", value_parser = positive_number, help_heading = "Output")]
     pub stroke_width: Option<f64>,
@@ -161,6 +216,24 @@ pub struct TraceArgs {
     pub shard: Option<crawltrace::batch::Shard>,
 }
 
+/// `--format` values.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum FormatArg {
+    /// SVG: one path per curve, width and height in mm or inches, viewBox in pixels.
+    Svg,
+    /// DXF R2000: one LWPOLYLINE per curve, closed flag set on closed curves.
+    Dxf,
+}
+
+/// `--units` values.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum UnitsArg {
+    /// Millimetres.
+    Mm,
+    /// Inches.
+    In,
+}
+
 /// `--method` values.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum MethodArg {
@@ -195,6 +268,27 @@ impl TraceArgs {
             max_pixels: self.max_pixels,
         }
     }
+
+    /// How the drawing is written: `--format` (or the extension of `-o`), `--dpi`, `--size`,
+    /// `--units`.
+    pub fn export_options(&self) -> ExportOptions {
+        let from_output = self.output.as_deref().and_then(OutputFormat::from_path);
+        ExportOptions {
+            format: match self.format {
+                Some(FormatArg::Svg) => OutputFormat::Svg,
+                Some(FormatArg::Dxf) => OutputFormat::Dxf,
+                None => from_output.unwrap_or_default(),
+            },
+            size: SizeRequest {
+                dpi: self.dpi,
+                size: self.size,
+                units: self.units.map(|units| match units {
+                    UnitsArg::Mm => Units::Mm,
+                    UnitsArg::In => Units::In,
+                }),
+            },
+        }
+    }
 }
 
 /// An option value that parses but is out of range.
@@ -212,6 +306,9 @@ pub enum OptionCheck {
     /// Empty, or a character that would break the SVG attribute.
     #[error("must be an SVG colour such as black or #1a2b3c")]
     NotAColour,
+    /// Not a positive length with a unit.
+    #[error(transparent)]
+    NotALength(#[from] UnitsError),
 }
 
 /// Why an option value was refused. `main` reports a failed [`OptionCheck`] as
@@ -287,6 +384,12 @@ const MAX_JOBS: u64 = 1024;
 /// `--jobs`: 1 to [`MAX_JOBS`].
 fn job_count(text: &str) -> Result<usize, ValueError> {
     whole_number_between(text, 1, MAX_JOBS).map(|jobs| jobs as usize)
+}
+
+/// A positive length with a unit (`--size`).
+fn physical_length(text: &str) -> Result<Length, ValueError> {
+    text.parse()
+        .map_err(|error: UnitsError| OptionCheck::from(error).into())
 }
 
 /// Anything that can stand in an SVG attribute as a colour (`--color`); the SVG renderer judges
@@ -366,6 +469,21 @@ mod tests {
             pixel_count("2.5e8"),
             Err(ValueError::NotAWholeNumber(_))
         ));
+    }
+
+    #[test]
+    fn sizes_need_a_unit() {
+        let length = physical_length("210mm").ok().unwrap();
+        assert!((length.inches - 210.0 / 25.4).abs() < 1e-12);
+        for text in ["banana", "210", "-3in", "0mm"] {
+            assert!(
+                matches!(
+                    physical_length(text),
+                    Err(ValueError::Check(OptionCheck::NotALength(_)))
+                ),
+                "{text:?}"
+            );
+        }
     }
 
     #[test]

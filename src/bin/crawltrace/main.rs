@@ -1,5 +1,6 @@
 //! The `crawltrace` command: parses arguments, reads and writes files, reports; the work is done
-//! by the library. One module per command ([`trace`], [`points`], [`render`]).
+//! by the library. One module per command ([`trace`], [`points`], [`render`], [`help_files`] for
+//! completions and the manual page).
 // The one exception is in `allocator`, where it is allowed and explained.
 #![deny(unsafe_code)]
 
@@ -7,6 +8,7 @@ mod allocator;
 mod cli;
 mod exit;
 mod files;
+mod help_files;
 mod points;
 mod render;
 mod sandbox;
@@ -28,9 +30,11 @@ fn main() -> ExitCode {
         Err(error) => return report_usage_error(error),
     };
     let result = match cli.command {
-        Command::Trace(args) => trace::run(args),
+        Command::Trace(args) => trace::run(*args),
         Command::Points(args) => points::run(args),
         Command::Render(args) => render::run(args),
+        Command::Completions(args) => help_files::completions(args),
+        Command::Manpage(args) => help_files::manpage(args),
     };
     match result {
         Ok(exit) => exit,

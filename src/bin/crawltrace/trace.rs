@@ -1,40 +1,72 @@
-//! `crawltrace trace`: one image to one SVG, or folders and several images with the batch engine.
+//! `crawltrace trace`: one image (a file, or standard input) to one SVG or DXF file, or folders
+//! and several images with the batch engine.
 
 use std::fs;
+use std::io::{self, Read};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use crawltrace::batch::{self, trace_file_to_svg, BatchOptions};
+use crawltrace::batch::{self, trace_file_to_document, BatchOptions};
 use crawltrace::files::{describe_io, printable, OutputPlan};
 use crawltrace::stages::debug::{debug_images, PICTURE_NAMES};
-use crawltrace::{to_svg, trace_file, TraceOptions, Traced};
+use crawltrace::stages::decode::DecodeLimits;
+use crawltrace::{export, to_svg, trace_bytes, trace_file, ExportOptions, TraceOptions, Traced};
 
 use crate::cli::TraceArgs;
 use crate::exit::{Exit, Failure};
 use crate::files::{claim_output, png_bytes, save, write_stdout};
 
+/// How errors name standard input.
+const STDIN_NAME: &str = "<stdin>";
+
 pub fn run(args: TraceArgs) -> Result<Exit, Failure> {
     let options = args.trace_options();
+    let export_options = args.export_options();
     let input = &args.inputs[0];
+    if args.inputs.len() > 1 && args.inputs.iter().any(|input| is_stdin(input)) {
+        return Err(Failure::new(
+            "-",
+            "standard input can only be traced alone, as the one input",
+        ));
+    }
     let batch_mode =
         args.inputs.len() > 1 || input.is_dir() || args.output.as_deref().is_some_and(Path::is_dir);
     if batch_mode {
-        run_batch(&args, &options)
+        run_batch(&args, &options, &export_options)
     } else {
-        run_one(&args, input, &options)
+        run_one(&args, input, &options, &export_options)
     }
 }
 
-/// Traces one image into one SVG file (or standard output). Every output (the SVG and the
-/// `--debug` pictures) is checked before the work starts.
-fn run_one(args: &TraceArgs, input: &Path, options: &TraceOptions) -> Result<Exit, Failure> {
+/// Whether an input names standard input.
+fn is_stdin(input: &Path) -> bool {
+    input.as_os_str() == "-"
+}
+
+/// Traces one image (a file, or standard input for `-`) into one SVG or DXF file (or standard
+/// output). Every output (the document and the `--debug` pictures) is checked before the work
+/// starts.
+fn run_one(
+    args: &TraceArgs,
+    input: &Path,
+    options: &TraceOptions,
+    export_options: &ExportOptions,
+) -> Result<Exit, Failure> {
     let started = Instant::now();
+    let from_stdin = is_stdin(input);
+    let input_name = if from_stdin {
+        Path::new(STDIN_NAME)
+    } else {
+        input
+    };
     let output = match &args.output {
         Some(path) if path.as_os_str() == "-" => None,
         Some(path) => Some(path.clone()),
-        None => Some(input.with_extension("svg")),
+        None if from_stdin => None,
+        None => Some(input.with_extension(export_options.format.extension())),
     };
-    let mut plan = OutputPlan::new([input]);
+    let inputs: &[&Path] = if from_stdin { &[] } else { &[input] };
+    let mut plan = OutputPlan::new(inputs.iter().copied());
     if let Some(path) = &output {
         claim_output(&mut plan, path)?;
     }
@@ -43,15 +75,21 @@ fn run_one(args: &TraceArgs, input: &Path, options: &TraceOptions) -> Result<Exi
             claim_output(&mut plan, &folder.join(name))?;
         }
     }
-    let traced = trace_file(input, options).map_err(|e| Failure::new(input, e))?;
-    let text = to_svg(&traced.drawing);
+    let traced = if from_stdin {
+        trace_bytes(read_stdin(options)?, options)
+    } else {
+        trace_file(input, options)
+    }
+    .map_err(|e| Failure::new(input_name, e))?;
+    let text = export(&traced, export_options);
     match &output {
         Some(path) => save(path, text.as_bytes())?,
         None => write_stdout(text.as_bytes())?,
     }
     if let Some(folder) = &args.debug {
-        // The SVG is written: a failure now is not "nothing ran".
-        write_debug_pictures(folder, &traced, &text)
+        // The output is written: a failure now is not "nothing ran". The pictures are in
+        // pixels, whatever the output's format and size.
+        write_debug_pictures(folder, &traced, &to_svg(&traced.drawing))
             .map_err(|failure| failure.with_exit(Exit::PartlyWritten))?;
     }
     if !args.quiet {
@@ -59,7 +97,7 @@ fn run_one(args: &TraceArgs, input: &Path, options: &TraceOptions) -> Result<Exi
         let closed = curves.iter().filter(|c| c.closed).count();
         eprintln!(
             "{}: {} curve(s), {} closed, pen {:.1} px, {:.2} s{}",
-            printable(input),
+            printable(input_name),
             curves.len(),
             closed,
             traced.report.stroke_width,
@@ -86,8 +124,31 @@ fn write_debug_pictures(folder: &Path, traced: &Traced, svg: &str) -> Result<(),
     Ok(())
 }
 
+/// Reads all of standard input: the bytes of one image file.
+fn read_stdin(options: &TraceOptions) -> Result<Vec<u8>, Failure> {
+    // No more than the largest image within the pixel limit can be (`cat /dev/zero |` ends).
+    let limit = DecodeLimits::with_max_pixels(options.max_pixels).max_file_bytes();
+    let mut bytes = Vec::new();
+    io::stdin()
+        .lock()
+        .take(limit.saturating_add(1))
+        .read_to_end(&mut bytes)
+        .map_err(|e| Failure::new(STDIN_NAME, describe_io(&e)))?;
+    if bytes.len() as u64 > limit {
+        return Err(Failure::new(
+            STDIN_NAME,
+            format!("more than {limit} bytes, larger than an image within the pixel limit can be (--max-pixels)"),
+        ));
+    }
+    Ok(bytes)
+}
+
 /// Traces folders or several images into an output folder with the batch engine.
-fn run_batch(args: &TraceArgs, options: &TraceOptions) -> Result<Exit, Failure> {
+fn run_batch(
+    args: &TraceArgs,
+    options: &TraceOptions,
+    export_options: &ExportOptions,
+) -> Result<Exit, Failure> {
     if args.debug.is_some() {
         return Err(Failure::new("--debug", "works with one image at a time"));
     }
@@ -100,11 +161,12 @@ fn run_batch(args: &TraceArgs, options: &TraceOptions) -> Result<Exit, Failure> 
         quiet: args.quiet,
         shard: args.shard,
         report: args.report.clone(),
+        format: export_options.format,
     };
     let discovery =
         batch::discover_inputs(&args.inputs, &batch_options).map_err(Failure::general)?;
     let summary = batch::run_batch(&discovery, &out_dir, &batch_options, |path| {
-        trace_file_to_svg(path, options)
+        trace_file_to_document(path, options, export_options)
     })
     .map_err(Failure::general)?;
     if let Some(error) = &summary.report_error {
