@@ -35,7 +35,10 @@ pub fn manpage(args: ManpageArgs) -> Result<Exit, Failure> {
     };
     fs::create_dir_all(&folder).map_err(|e| Failure::new(&folder, describe_io(&e)))?;
     let subcommands: Vec<clap::Command> = command.get_subcommands().cloned().collect();
-    let pages: Vec<Man> = std::iter::once(command).chain(subcommands).map(Man::new).collect();
+    let pages: Vec<Man> = std::iter::once(command)
+        .chain(subcommands)
+        .map(Man::new)
+        .collect();
     // Every page is checked like any output before one is written (a FIFO or a device named
     // like a page is refused).
     let mut plan = OutputPlan::new([]);
