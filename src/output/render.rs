@@ -424,14 +424,15 @@ mod tests {
     }
 
     /// Found by the fuzz harness's hostile SVGs: tiny-skia 0.12 panics (alpha_runs.rs) on a
-    /// circle of radius 10³⁰ with dashes; the panic is an error, not a crash.
+    /// circle of radius 10³⁰ with dashes. Its dashes are now counted and refused before
+    /// rendering; the panic, were it reached, is an error too (`contain`), never a crash.
     #[test]
     fn a_huge_dashed_circle_is_an_error() {
         let svg =
             document(r#"<circle r="1e30" cx="100" cy="100" stroke="black" stroke-dasharray="1"/>"#);
         match render_svg(&svg, 1.0) {
-            Ok(_) | Err(RenderError::Crashed(_)) => {}
-            Err(other) => panic!("{other}"),
+            Err(RenderError::TooCostly { .. } | RenderError::Crashed(_)) => {}
+            other => panic!("{:?}", other.map(|image| image.dimensions())),
         }
     }
 
@@ -444,6 +445,26 @@ mod tests {
         let error = render_svg(&svg, 1.0).unwrap_err();
         assert!(matches!(error, RenderError::Arc { .. }), "{error}");
         let fine = document(r#"<path d="M10 10 A65535 1e6 0 1 1 190 190" fill="red"/>"#);
+        assert!(render_svg(&fine, 1.0).is_ok());
+    }
+
+    /// Found by the fuzz harness (svg, seed 1, cases 5225 and 5350): strokes dashed every 10⁻⁹
+    /// made tiny-skia abort (not a panic: nothing to catch), and a dashed circle of radius 10³⁸
+    /// filled memory. The dashes are counted into the cost; ordinary dashes still render.
+    #[test]
+    fn dashes_are_counted() {
+        for body in [
+            r#"<path d="M-1 0 L200 200 L0 200 Z" stroke="black" stroke-dasharray="1e-9 1e-9"/>"#,
+            r#"<circle cx="50" cy="50" r="1e38" stroke="black" stroke-dasharray="4 2"/>"#,
+        ] {
+            let error = render_svg(&document(body), 1.0).unwrap_err();
+            assert!(
+                matches!(error, RenderError::TooCostly { .. }),
+                "{body}: {error}"
+            );
+        }
+        let fine =
+            document(r#"<circle cx="50" cy="50" r="40" stroke="black" stroke-dasharray="4 2"/>"#);
         assert!(render_svg(&fine, 1.0).is_ok());
     }
 

@@ -134,8 +134,9 @@ impl Model {
 
     fn path(&self, path: &Path) -> Cost {
         let area = self.pixels(path.abs_stroke_bounding_box());
+        let segments = path.data().len() as f64 + dashes(path);
         let mut cost = Cost {
-            operations: path.data().len() as f64 * OPERATIONS_PER_SEGMENT + area,
+            operations: segments * OPERATIONS_PER_SEGMENT + area,
             peak_bytes: 0.0,
         };
         let paints = [
@@ -202,14 +203,42 @@ impl Model {
         f64::from(sx.max(sy))
     }
 
-    /// The area in canvas pixels of `rect` (in user units), clipped as resvg clips layers.
+    /// The area in canvas pixels of `rect` (in user units), clipped as resvg clips layers and
+    /// rounded out to whole pixels as its pixmaps are (a layer of 2.4 pixels is 3 × 3).
     fn pixels(&self, rect: Rect) -> f64 {
         let Some(largest) = self.largest_layer else {
             return 0.0;
         };
+        let whole = |low: f32, high: f32| f64::from(high.ceil() - low.floor());
         rect.transform(self.scale)
             .and_then(|r| r.intersect(&largest))
-            .map_or(0.0, |r| f64::from(r.width()) * f64::from(r.height()))
+            .map_or(0.0, |r| {
+                whole(r.left(), r.right()) * whole(r.top(), r.bottom())
+            })
+    }
+}
+
+/// How many dashes the stroke of `path` is cut into: its length (that of its control polygon,
+/// an upper bound) over the dash pattern's period. Dashes as fine as 10⁻⁹ over a whole drawing,
+/// or ordinary ones around a circle of radius 10³⁸, made tiny-skia abort or fill memory.
+fn dashes(path: &Path) -> f64 {
+    let Some(period) = path
+        .stroke()
+        .and_then(|stroke| stroke.dasharray())
+        .map(|array| array.iter().map(|&d| f64::from(d)).sum::<f64>())
+    else {
+        return 0.0;
+    };
+    let points = path.data().points();
+    let length: f64 = points
+        .windows(2)
+        .map(|pair| f64::from(pair[0].distance(pair[1])))
+        .sum();
+    let count = length / period;
+    if count.is_finite() {
+        count
+    } else {
+        f64::INFINITY
     }
 }
 

@@ -113,6 +113,9 @@ fn explain_failure(status: std::process::ExitStatus, errors: &str) -> String {
             Some(SIGABRT) if errors.contains("memory allocation") => {
                 return "refusing to render: it needed more memory than its budget".to_string()
             }
+            Some(SIGABRT) => {
+                return "the renderer crashed on it (a bug upstream in usvg or resvg; see the README's known limits)".to_string()
+            }
             _ => {}
         }
     }
