@@ -37,15 +37,20 @@ use mutate::{Case, Kind};
 /// shared cores.
 const QUICK_CASES: u64 = 300;
 
-/// DECISION: the time budget of one case, in wall-clock time: 30 s, 90 s in a debug build. The
-/// costliest render the library accepts takes about 4 s of one core (`MAX_OPERATIONS`), and the
-/// machine may be shared: a budget near that reported load, not hangs (a first long run with 10 s
-/// reported a dozen such cases while two builds ran beside it).
-const CASE_BUDGET: Duration = if cfg!(debug_assertions) {
-    Duration::from_secs(90)
+/// DECISION: the time budget of one case, in processor time of its worker: 10 s, 60 s in a debug
+/// build. The costliest render the library accepts takes about 4 s of one core
+/// (`MAX_OPERATIONS`). Processor time, not wall-clock time, so that a loaded machine does not
+/// report slow cases as hangs (a first long run with a 10 s wall-clock budget, next to two
+/// builds, reported a dozen).
+const CASE_CPU_BUDGET: Duration = if cfg!(debug_assertions) {
+    Duration::from_secs(60)
 } else {
-    Duration::from_secs(30)
+    Duration::from_secs(10)
 };
+
+/// A worker that uses no processor time but does not answer (blocked on something) is stopped
+/// after this much wall-clock time.
+const CASE_WALL_BUDGET: Duration = Duration::from_secs(600);
 
 /// DECISION: the worker's address space: 1 GiB. The promise is 500 MB resident; address
 /// space also counts what the allocator and the thread stacks reserve without using.
@@ -237,10 +242,10 @@ impl Worker {
     /// Waits for case `index` to finish within the budget; returns its outcome (`traced`,
     /// `not decoded`, ...).
     fn next_case(&mut self, index: u64) -> Result<String, String> {
-        let deadline = Instant::now() + CASE_BUDGET;
+        let started = Instant::now();
+        let cpu_at_start = cpu_time(self.child.id());
         loop {
-            let left = deadline.saturating_duration_since(Instant::now());
-            match self.lines.recv_timeout(left) {
+            match self.lines.recv_timeout(Duration::from_millis(500)) {
                 Ok(line) if line.starts_with(&format!("ok {index} ")) => {
                     return Ok(line[4 + index.to_string().len()..].to_string())
                 }
@@ -252,8 +257,26 @@ impl Worker {
                 }
                 Ok(_) => continue,
                 Err(mpsc::RecvTimeoutError::Timeout) => {
-                    let _ = self.child.kill();
-                    return Err(format!("hung: still running after {CASE_BUDGET:?}"));
+                    let used = cpu_time(self.child.id())
+                        .zip(cpu_at_start)
+                        .map(|(now, start)| now.saturating_sub(start));
+                    let over_cpu = used.is_some_and(|used| used > CASE_CPU_BUDGET);
+                    // Without /proc, the processor budget stands for wall-clock time.
+                    let over_wall = started.elapsed()
+                        > if used.is_some() {
+                            CASE_WALL_BUDGET
+                        } else {
+                            CASE_CPU_BUDGET
+                        };
+                    if over_cpu || over_wall {
+                        let _ = self.child.kill();
+                        let _ = self.child.wait();
+                        return Err(format!(
+                            "hung: {:?} of processor time, {:?} in all",
+                            used.unwrap_or_default(),
+                            started.elapsed()
+                        ));
+                    }
                 }
                 Err(mpsc::RecvTimeoutError::Disconnected) => {
                     let status = self.child.wait().expect("the worker is waited for");
@@ -270,6 +293,17 @@ impl Worker {
         let _ = self.child.kill();
         let _ = self.child.wait();
     }
+}
+
+/// The processor time (user and system) process `pid` has used so far, from `/proc` (Linux);
+/// `None` elsewhere. DECISION: `/proc` counts in USER_HZ, 100 a second on every Linux platform.
+fn cpu_time(pid: u32) -> Option<Duration> {
+    let stat = std::fs::read_to_string(format!("/proc/{pid}/stat")).ok()?;
+    // The command name, in parentheses, may hold spaces: count fields after it. The state is
+    // field 3 of the line, utime and stime fields 14 and 15.
+    let fields: Vec<&str> = stat.get(stat.rfind(')')? + 2..)?.split(' ').collect();
+    let ticks = |at: usize| fields.get(at)?.parse::<u64>().ok();
+    Some(Duration::from_millis((ticks(11)? + ticks(12)?) * 10))
 }
 
 /// The worker: limits its own memory, then runs its cases, reporting each on standard output.
