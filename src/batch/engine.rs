@@ -115,7 +115,9 @@ fn plan_outputs(
         .iter()
         .map(|input| match input.unreadable {
             Some(_) => None,
-            None => plan.claim(&out_dir.join(input.output_relative(options.format))).err(),
+            None => plan
+                .claim(&out_dir.join(input.output_relative(options.format)))
+                .err(),
         })
         .collect();
     for relative in &discovery.other_shard_outputs {

@@ -8,9 +8,8 @@ use std::panic::{catch_unwind, AssertUnwindSafe};
 
 use image::RgbaImage;
 
-use super::render_budget::{
-    estimate, parse_hazard, Cost, ParseHazard, MAX_ARC_CURVES, MAX_USE_ELEMENTS,
-};
+use super::render_budget::{estimate, parse_hazard, Cost, ParseHazard};
+pub use super::render_budget::{MAX_ARC_CURVES, MAX_USE_ELEMENTS};
 
 /// Why an SVG could not be rasterized.
 #[derive(Debug, thiserror::Error)]

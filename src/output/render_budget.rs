@@ -247,7 +247,7 @@ fn dashes(path: &Path) -> f64 {
 /// number (an arc of 32 000 curves took 0.7 s to parse, one of 150 000 took 13 s, and one of
 /// radius 10³⁸ never finished). 10 000 curves is an arc of radius about 10²³, far beyond any
 /// drawing, and parses in 0.1 s.
-pub(super) const MAX_ARC_CURVES: f64 = 10_000.0;
+pub const MAX_ARC_CURVES: f64 = 10_000.0;
 
 /// The tolerance usvg 0.49 gives kurbo for arcs (`parser/shapes.rs`).
 const USVG_ARC_TOLERANCE: f64 = 0.1;
@@ -255,7 +255,7 @@ const USVG_ARC_TOLERANCE: f64 = 0.1;
 /// DECISION: the most elements that `<use>` may add to a document beyond its own: 100 000, the
 /// size of a large drawing. usvg copies the referenced content for every `<use>`, so ten levels of
 /// ten uses each make 10¹⁰ elements from 3 kB of text; each costs about a kilobyte once parsed.
-pub(super) const MAX_USE_ELEMENTS: f64 = 100_000.0;
+pub const MAX_USE_ELEMENTS: f64 = 100_000.0;
 
 /// What makes usvg's parse itself unbounded, found before it runs.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -28,7 +28,7 @@ const DOT_MAX_SKELETON_IN_RADII: f64 = 1.0;
 const DOT_RADIUS_SEARCH_IN_PEN_WIDTHS: f64 = 3.0;
 
 /// Takes the dots out of `strokes`: free-ended open strokes whose skeleton is no longer than the
-/// ink around it is wide (see [`DOT_MAX_SKELETON_IN_RADII`]). The others are returned in order.
+/// ink around it is wide (see `DOT_MAX_SKELETON_IN_RADII`). The others are returned in order.
 pub fn split_dots(
     strokes: Vec<Stroke>,
     mask: &Bitmap,

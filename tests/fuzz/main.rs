@@ -35,7 +35,7 @@ use mutate::{Case, Kind};
 
 /// Cases per kind of the quick run, about a minute for all four kinds in a debug build on two
 /// shared cores.
-const QUICK_CASES: u64 = 300;
+const QUICK_CASES: u64 = 1000;
 
 /// DECISION: the time budget of one case, in processor time of its worker: 10 s, 60 s in a debug
 /// build. The costliest render the library accepts takes about 4 s of one core
