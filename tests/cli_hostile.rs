@@ -156,6 +156,33 @@ fn a_fifo_or_a_device_given_to_trace_is_refused_without_blocking() {
     }
 }
 
+/// Standard input that never ends and is no image (`cat /dev/zero | crawltrace trace -`) is
+/// refused from its first bytes, not read into memory.
+#[test]
+fn endless_standard_input_is_refused_from_its_first_bytes() {
+    let folder = tempfile::tempdir().unwrap();
+    let child = Command::new("sh")
+        .arg("-c")
+        .arg(format!(
+            "ulimit -v {ADDRESS_SPACE_KIB}; exec \"$0\" trace - -o out.svg"
+        ))
+        .arg(BINARY)
+        .current_dir(folder.path())
+        .stdin(fs::File::open("/dev/zero").unwrap())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let output = wait_with_deadline(child, &["trace", "-"]);
+    assert_eq!(output.status.code(), Some(2));
+    let lines = stderr_lines(&output);
+    assert_eq!(lines.len(), 1, "{lines:?}");
+    assert!(
+        lines[0].starts_with("error: <stdin>: not an image"),
+        "{lines:?}"
+    );
+}
+
 /// A batch of every hostile image, a FIFO named like an image and one good drawing: it finishes,
 /// traces the good one, fails the bad ones alone with a line each, writes its summary and a
 /// report line per input, and exits 1.

@@ -9,7 +9,7 @@ use std::time::Instant;
 use crawltrace::batch::{self, trace_file_to_document, BatchOptions};
 use crawltrace::files::{describe_io, printable, OutputPlan};
 use crawltrace::stages::debug::{debug_images, PICTURE_NAMES};
-use crawltrace::stages::decode::DecodeLimits;
+use crawltrace::stages::decode::{identify_format, DecodeLimits, IDENTIFY_BYTES};
 use crawltrace::{export, to_svg, trace_bytes, trace_file, ExportOptions, TraceOptions, Traced};
 
 use crate::cli::TraceArgs;
@@ -124,16 +124,20 @@ fn write_debug_pictures(folder: &Path, traced: &Traced, svg: &str) -> Result<(),
     Ok(())
 }
 
-/// Reads all of standard input: the bytes of one image file.
+/// Reads all of standard input: the bytes of one image file. Its first bytes must be an image's
+/// (`cat /dev/zero |` stops there), and it is read up to the largest file an image within the
+/// pixel limit can be.
 fn read_stdin(options: &TraceOptions) -> Result<Vec<u8>, Failure> {
-    // No more than the largest image within the pixel limit can be (`cat /dev/zero |` ends).
     let limit = DecodeLimits::with_max_pixels(options.max_pixels).max_file_bytes();
+    let failure = |e: io::Error| Failure::new(STDIN_NAME, describe_io(&e));
+    let mut reader = io::stdin().lock().take(limit.saturating_add(1));
     let mut bytes = Vec::new();
-    io::stdin()
-        .lock()
-        .take(limit.saturating_add(1))
+    (&mut reader)
+        .take(IDENTIFY_BYTES as u64)
         .read_to_end(&mut bytes)
-        .map_err(|e| Failure::new(STDIN_NAME, describe_io(&e)))?;
+        .map_err(failure)?;
+    identify_format(&bytes).map_err(|e| Failure::new(STDIN_NAME, e))?;
+    reader.read_to_end(&mut bytes).map_err(failure)?;
     if bytes.len() as u64 > limit {
         return Err(Failure::new(
             STDIN_NAME,
