@@ -16,7 +16,7 @@
 //! | reconstruct curves from points (the paper's crawl) | [`reconstruct()`] | [`Reconstruction`]: chains of input indices, open or closed, and outliers |
 //! | reconstruct curves from points with stray points, sharp corners, open ends or thin parts (the robust crawl, `crawltrace points`' default) | [`reconstruct_robust()`] | [`Reconstruction`] |
 //! | read a point file | [`parse_points`] | [`PointFile`]: the points and their line numbers |
-//! | render SVG to pixels | [`render_svg`] | an RGBA image |
+//! | render SVG to pixels | [`render_svg`], [`render_svg_with`] | an RGBA image |
 //!
 //! Folders of images are traced by [`batch`]; every stage of the pipeline is in [`stages`], for
 //! benchmarks, tests and front ends that run a stage on its own.
@@ -58,7 +58,9 @@ pub use crawl::strokes::Method;
 pub use crawl::ReconstructError;
 pub use export::{export, ExportOptions, OutputFormat};
 pub use output::dxf::to_dxf;
-pub use output::render::{render_svg, RenderError};
+pub use output::render::{
+    prepare_render, render_svg, render_svg_with, PreparedRender, RenderError, RenderOptions,
+};
 pub use output::svg::{to_svg, to_svg_with_size, CurvePath, Drawing};
 pub use output::units::{Length, PhysicalSize, SizeRequest, SizeRequestError, Units, UnitsError};
 pub use points::read::{parse_points, PointFile, PointFileError};

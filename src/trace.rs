@@ -2,7 +2,7 @@
 //! sample → reconstruct (the crawl) → fit → [`Drawing`]; every stage is a module of its own.
 
 use std::borrow::Cow;
-use std::io;
+use std::io::Read;
 use std::path::Path;
 use std::time::{Duration, Instant};
 
@@ -10,18 +10,24 @@ use image::{DynamicImage, GrayImage};
 
 use crate::crawl::strokes::{connect, Method};
 use crate::crawl::tips::restore_tips;
-use crate::files::describe_io;
+use crate::files::{open_regular_file, ReadError};
 use crate::output::debug::Stages;
-use crate::output::fit::{default_tolerance, fit_paths, sort_paths, CurvePath, FitOptions};
+use crate::output::fit::{
+    default_tolerance, fit_paths, sort_paths, CurvePath, FitOptions, MIN_TOLERANCE_PX,
+};
 use crate::output::svg::Drawing;
 use crate::raster::binarize::{binarize, BinarizeOptions, MethodUsed};
 use crate::raster::bitmap::Bitmap;
 use crate::raster::clean::{clean, estimate_stroke_width, CleanReport};
-use crate::raster::decode::{decode_image, to_gray, DecodeError};
+use crate::raster::decode::{
+    decode_image_within, identify_format, to_gray, DecodeError, DecodeLimits, DEFAULT_MAX_PIXELS,
+    IDENTIFY_BYTES,
+};
 use crate::raster::density::image_dpi;
 use crate::raster::thin::thin;
 use crate::strokes::{
-    default_spacing, extract_strokes, sample_strokes, simplification_tolerance, split_dots,
+    default_spacing, extract_strokes, minimum_spacing, sample_strokes, simplification_tolerance,
+    split_dots,
 };
 
 /// What to do differently from the defaults. `TraceOptions::default()` needs no tuning.
@@ -29,12 +35,15 @@ use crate::strokes::{
 pub struct TraceOptions {
     /// Thresholding: automatic by default (Otsu, or adaptive on uneven pages).
     pub binarize: BinarizeOptions,
-    /// Sample spacing along strokes in pixels; by default 1.5 pen widths.
+    /// Sample spacing along strokes in pixels; by default 1.5 pen widths. A smaller spacing than
+    /// half a pixel or a quarter of the pen width is raised to that
+    /// ([`crate::stages::strokes::minimum_spacing`]).
     pub spacing: Option<f64>,
     /// Smooth cubic Béziers (default) or straight segments.
     pub smooth: bool,
     /// The largest deviation of the output path from the reconstructed polyline, in pixels; by
-    /// default a quarter of the pen width (at least 0.5 px).
+    /// default a quarter of the pen width (at least 0.5 px). A tolerance below 0.01 px (the
+    /// SVG's resolution) is raised to it.
     pub simplify: Option<f64>,
     /// Stroke width of the SVG paths; by default the measured pen width.
     pub stroke_width: Option<f64>,
@@ -44,6 +53,10 @@ pub struct TraceOptions {
     pub method: Method,
     /// Keep the intermediate images and geometry in [`Traced::stages`] (for `--debug`).
     pub keep_stages: bool,
+    /// [`trace_file`] refuses images with more pixels than this, from their header, before
+    /// decoding them; files larger than such an image can be are not read
+    /// ([`crate::stages::decode::DecodeLimits`]). 250 megapixels by default.
+    pub max_pixels: u64,
 }
 
 impl Default for TraceOptions {
@@ -57,6 +70,7 @@ impl Default for TraceOptions {
             color: "#000000".to_string(),
             method: Method::default(),
             keep_stages: false,
+            max_pixels: DEFAULT_MAX_PIXELS,
         }
     }
 }
@@ -148,6 +162,7 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
     let spacing = options
         .spacing
         .filter(|s| s.is_finite() && *s > 0.0)
+        .map(|s| s.max(minimum_spacing(stroke_width)))
         .unwrap_or_else(|| default_spacing(stroke_width));
     report.spacing = spacing;
     let sampled = sample_strokes(&strokes, spacing, simplification_tolerance(stroke_width));
@@ -165,6 +180,7 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
         tolerance: options
             .simplify
             .filter(|t| t.is_finite() && *t >= 0.0)
+            .map(|t| t.max(MIN_TOLERANCE_PX))
             .unwrap_or_else(|| default_tolerance(stroke_width)),
     };
     report.tolerance = fit_options.tolerance;
@@ -284,10 +300,18 @@ fn raster_stages(
 /// the file name.
 #[derive(Debug, thiserror::Error)]
 pub enum TraceFileError {
-    /// The file could not be read.
-    #[error("{}", describe_io(.0))]
-    Read(#[source] io::Error),
-    /// The bytes are not an image this crate decodes.
+    /// The file could not be read, or is not a regular file.
+    #[error(transparent)]
+    Read(#[from] ReadError),
+    /// The file is larger than any image within [`TraceOptions::max_pixels`] can be.
+    #[error("file too large: {size} bytes, more than an image within the pixel limit can hold ({limit} bytes; --max-pixels)")]
+    TooLarge {
+        /// The file's size in bytes.
+        size: u64,
+        /// The largest file read.
+        limit: u64,
+    },
+    /// The bytes are not an image this crate decodes, or one too large.
     #[error(transparent)]
     Decode(#[from] DecodeError),
     /// The image decoded but could not be traced (a blank page).
@@ -296,7 +320,10 @@ pub enum TraceFileError {
 }
 
 /// Reads, decodes and traces one image file: [`trace()`] on the file's image. The format is
-/// recognised from the content, not the file name.
+/// recognised from the content, not the file name. Only a regular file is read (a named pipe or
+/// a device is refused without blocking), a file larger than an image within
+/// [`TraceOptions::max_pixels`] is not read, one that is no image is refused from its first
+/// bytes, and the image's size is checked from its header before it is decoded.
 ///
 /// # Examples
 ///
@@ -312,15 +339,21 @@ pub enum TraceFileError {
 ///
 /// let missing = trace_file(Path::new("no-such-drawing.png"), &TraceOptions::default());
 /// assert!(matches!(missing, Err(TraceFileError::Read(_))));
+///
+/// let small = TraceOptions { max_pixels: 10_000, ..TraceOptions::default() };
+/// let too_large = trace_file(Path::new("samples/face-clean.png"), &small);
+/// assert!(too_large.unwrap_err().to_string().starts_with("image too large"));
 /// # Ok::<(), TraceFileError>(())
 /// ```
 ///
 /// # Errors
 ///
-/// [`TraceFileError::Read`] when the file cannot be read, [`TraceFileError::Decode`] when it is
-/// not an image this crate reads, [`TraceFileError::Trace`] when the image has no ink.
+/// [`TraceFileError::Read`] when the file cannot be read or is not a regular file,
+/// [`TraceFileError::TooLarge`] when it is larger than an image within the limit can be,
+/// [`TraceFileError::Decode`] when it is not an image this crate reads or has too many pixels,
+/// [`TraceFileError::Trace`] when the image has no ink.
 pub fn trace_file(path: &Path, options: &TraceOptions) -> Result<Traced, TraceFileError> {
-    let bytes = std::fs::read(path).map_err(TraceFileError::Read)?;
+    let bytes = read_image_file(path, &DecodeLimits::with_max_pixels(options.max_pixels))?;
     trace_bytes(bytes, options)
 }
 
@@ -344,11 +377,12 @@ pub fn trace_file(path: &Path, options: &TraceOptions) -> Result<Traced, TraceFi
 ///
 /// # Errors
 ///
-/// [`TraceFileError::Decode`] when the bytes are not an image this crate reads,
+/// [`TraceFileError::Decode`] when the bytes are not an image this crate reads or it has more
+/// pixels than [`TraceOptions::max_pixels`],
 /// [`TraceFileError::Trace`] when the image has no ink; never [`TraceFileError::Read`].
 pub fn trace_bytes(bytes: Vec<u8>, options: &TraceOptions) -> Result<Traced, TraceFileError> {
     let image_dpi = image_dpi(&bytes);
-    let image = decode_image(&bytes)?;
+    let image = decode_image_within(&bytes, &DecodeLimits::with_max_pixels(options.max_pixels))?;
     drop(bytes);
     // The trace starts by reducing the image to 8-bit gray; doing it here instead lets the
     // colour pixels (3 to 16 bytes each) go before the trace, not after it. Same result.
@@ -359,4 +393,29 @@ pub fn trace_bytes(bytes: Vec<u8>, options: &TraceOptions) -> Result<Traced, Tra
     let mut traced = trace(&image, options)?;
     traced.image_dpi = image_dpi;
     Ok(traced)
+}
+
+/// Reads an image file within `limits`: a regular file, no larger than
+/// [`DecodeLimits::max_file_bytes`], whose first bytes are an image's.
+fn read_image_file(path: &Path, limits: &DecodeLimits) -> Result<Vec<u8>, TraceFileError> {
+    let (file, size) = open_regular_file(path)?;
+    let limit = limits.max_file_bytes();
+    if size > limit {
+        return Err(TraceFileError::TooLarge { size, limit });
+    }
+    // A file that is no image is refused from its first bytes, not read whole.
+    let mut reader = file.take(limit.saturating_add(1));
+    let mut bytes = Vec::with_capacity(usize::try_from(size).unwrap_or(0));
+    (&mut reader)
+        .take(IDENTIFY_BYTES as u64)
+        .read_to_end(&mut bytes)
+        .map_err(ReadError::Io)?;
+    identify_format(&bytes)?;
+    reader.read_to_end(&mut bytes).map_err(ReadError::Io)?;
+    let size = bytes.len() as u64;
+    if size > limit {
+        // The file grew since it was opened.
+        return Err(TraceFileError::TooLarge { size, limit });
+    }
+    Ok(bytes)
 }

@@ -11,6 +11,7 @@ use crawltrace::batch::{
     discover_inputs, run_batch, BatchError, BatchOptions, BatchSummary, FileError, FileResult,
     FileStatus, Shard, Unreadable,
 };
+use crawltrace::files::OutputRefusal;
 use tempfile::TempDir;
 
 fn fake_processor(path: &Path) -> Result<FileResult, String> {
@@ -288,14 +289,21 @@ fn a_folder_in_place_of_an_output_is_not_up_to_date() {
     assert_eq!(with_status(&summary, "failed"), ["a.png"]);
     assert_eq!(with_status(&summary, "done"), ["b.png"]);
     let FileStatus::Failed {
-        error: error @ FileError::Write { .. },
+        error:
+            error @ FileError::OutputRefused {
+                refusal: OutputRefusal::NotAFile("a folder"),
+                ..
+            },
         ..
     } = &summary.outcomes[0].status
     else {
         panic!("{:?}", summary.outcomes[0]);
     };
     let message = error.to_string();
-    assert!(message.starts_with("cannot write"), "{message}");
+    assert!(
+        message.starts_with("refusing to replace a folder with a file"),
+        "{message}"
+    );
     assert!(out.path().join("a.svg").is_dir());
 }
 
@@ -464,7 +472,11 @@ fn an_output_that_is_an_input_is_refused() {
     assert_eq!(with_status(&summary, "failed"), ["drawing.svg"]);
     assert_eq!(with_status(&summary, "done"), ["a.png"]);
     let FileStatus::Failed {
-        error: error @ FileError::OverwritesInput { .. },
+        error:
+            error @ FileError::OutputRefused {
+                refusal: OutputRefusal::Input,
+                ..
+            },
         ..
     } = &summary.outcomes[1].status
     else {
@@ -759,3 +771,144 @@ fn a_broken_link_to_an_image_is_a_failure() {
     }
     assert_eq!(summary.not_images, 1);
 }
+
+/// Issue 13: `--report` naming one of the batch's own SVGs replaced it and a rerun called it up to
+/// date. The report is an output like the SVGs and may not be one of them, in this shard or
+/// another.
+#[test]
+fn a_report_over_an_output_of_the_run_is_refused_before_any_work() {
+    let input = tree(&[("a.png", "a"), ("b.png", "b"), ("c.png", "c")]);
+    let out = tempfile::tempdir().unwrap();
+    for shard in [
+        None,
+        Some(Shard::new(1, 3).unwrap()),
+        Some(Shard::new(2, 3).unwrap()),
+    ] {
+        for svg in ["a.svg", "b.svg", "c.svg"] {
+            let options = BatchOptions {
+                report: Some(out.path().join(svg)),
+                shard,
+                ..quiet()
+            };
+            let discovery = discover_inputs(&[input.path().to_path_buf()], &options).unwrap();
+            let result = run_batch(&discovery, out.path(), &options, fake_processor);
+            let Err(error @ BatchError::Report { .. }) = result else {
+                panic!("{svg} in {shard:?}: {result:?}");
+            };
+            let message = error.to_string();
+            assert!(
+                message.contains("refusing to write it twice: it is also the output"),
+                "{message}"
+            );
+            assert!(files_under(out.path()).is_empty(), "{svg}: work was done");
+        }
+    }
+}
+
+/// A named pipe (or a device) where an output should go is never replaced by a file: that input
+/// fails, the others are written.
+#[cfg(unix)]
+#[test]
+fn an_output_that_is_a_named_pipe_fails_its_input_alone() {
+    let input = tree(&[("a.png", "a"), ("b.png", "b")]);
+    let out = tempfile::tempdir().unwrap();
+    let pipe = out.path().join("a.svg");
+    make_fifo(&pipe);
+    let summary = run(&[input.path()], out.path(), &quiet());
+    assert_eq!(with_status(&summary, "failed"), ["a.png"]);
+    assert_eq!(with_status(&summary, "done"), ["b.png"]);
+    assert!(fs::symlink_metadata(&pipe).unwrap().file_type().is_fifo());
+    let FileStatus::Failed { error, .. } = &summary.outcomes[0].status else {
+        panic!("{:?}", summary.outcomes[0]);
+    };
+    assert!(
+        error
+            .to_string()
+            .starts_with("refusing to replace a named pipe with a file"),
+        "{error}"
+    );
+}
+
+/// Issue 13: a FIFO named like an image in an input folder hung the whole batch. It is never
+/// opened: it fails alone, with its report line, and the batch finishes.
+#[cfg(unix)]
+#[test]
+fn a_named_pipe_named_like_an_image_fails_alone_without_blocking() {
+    let input = tree(&[("a.png", "a"), ("c.png", "c")]);
+    make_fifo(&input.path().join("b.png"));
+    let out = tempfile::tempdir().unwrap();
+    let report = out.path().join("report.jsonl");
+    let options = BatchOptions {
+        report: Some(report.clone()),
+        ..quiet()
+    };
+    let summary = run(&[input.path()], out.path(), &options);
+    assert_eq!(with_status(&summary, "failed"), ["b.png"]);
+    assert_eq!(with_status(&summary, "done"), ["a.png", "c.png"]);
+    let FileStatus::Failed { error, .. } = &summary.outcomes[1].status else {
+        panic!("{:?}", summary.outcomes[1]);
+    };
+    assert!(matches!(
+        error,
+        FileError::Unreadable(Unreadable::NotAFile("a named pipe"))
+    ));
+    let text = fs::read_to_string(&report).unwrap();
+    assert_eq!(text.lines().count(), 3, "{text}");
+    assert!(text.contains("not a regular file (a named pipe)"), "{text}");
+}
+
+/// Temporary files left by a killed run are removed from the folders the next run writes to;
+/// nothing else is touched.
+#[test]
+fn a_rerun_removes_what_an_interrupted_run_left() {
+    let input = tree(&[("a.png", "a"), ("sub/b.png", "b")]);
+    let out = tree(&[
+        (".crawltrace-AbCd12.tmp", "<svg cut sh"),
+        ("sub/.crawltrace-XyZ789.tmp", "<sv"),
+        ("notes.txt", "the user's"),
+    ]);
+    run(&[input.path()], out.path(), &recursive());
+    assert_eq!(files_under(out.path()), ["a.svg", "notes.txt", "sub/b.svg"]);
+}
+
+/// The report is written after the SVGs; if that fails the SVGs stay and the failure is kept
+/// apart (the command exits 3, not 2, which means nothing ran).
+#[test]
+fn a_report_that_cannot_be_written_after_the_work_is_kept_apart() {
+    let input = tree(&[("a.png", "a"), ("b.png", "b")]);
+    let out = tempfile::tempdir().unwrap();
+    let reports = tempfile::tempdir().unwrap();
+    let report_folder = reports.path().join("reports");
+    fs::create_dir(&report_folder).unwrap();
+    let options = BatchOptions {
+        report: Some(report_folder.join("report.jsonl")),
+        jobs: Some(1),
+        ..quiet()
+    };
+    let discovery = discover_inputs(&[input.path().to_path_buf()], &options).unwrap();
+    // The report's folder disappears while the batch runs.
+    let summary = run_batch(&discovery, out.path(), &options, |path| {
+        let _ = fs::remove_dir_all(&report_folder);
+        fake_processor(path)
+    })
+    .unwrap();
+    assert_eq!(summary.done, 2);
+    assert_eq!(files_under(out.path()), ["a.svg", "b.svg"]);
+    assert!(
+        matches!(&summary.report_error, Some(BatchError::Report { .. })),
+        "{:?}",
+        summary.report_error
+    );
+}
+
+#[cfg(unix)]
+fn make_fifo(path: &Path) {
+    let status = std::process::Command::new("mkfifo")
+        .arg(path)
+        .status()
+        .expect("mkfifo runs");
+    assert!(status.success());
+}
+
+#[cfg(unix)]
+use std::os::unix::fs::FileTypeExt;

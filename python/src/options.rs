@@ -68,6 +68,8 @@ impl TraceArguments<'_> {
                 _ => return Err("method: must be \"strokes\", \"points\" or \"paper\"".into()),
             },
             keep_stages: false,
+            // The library's pixel limit for files (250 megapixels).
+            ..TraceOptions::default()
         };
         Ok((trace_options, self.export_options()?))
     }

@@ -6,14 +6,17 @@ use std::path::Path;
 
 use indicatif::{ProgressBar, ProgressStyle};
 
-/// `error: <path>: <message>`, on a single line whatever the message holds.
+use crate::files::{printable, printable_text};
+
+/// `error: <path>: <message>`, on a single printable line whatever the name and the message hold
+/// (line breaks in a message become spaces; control characters are escaped).
 pub(super) fn failure_line(path: &Path, message: &str) -> String {
     let message: String = message
         .trim()
         .chars()
         .map(|c| if c == '\n' || c == '\r' { ' ' } else { c })
         .collect();
-    format!("error: {}: {}", path.display(), message)
+    format!("error: {}: {}", printable(path), printable_text(&message))
 }
 
 /// Where progress and messages go: through the bar while it is drawn, so lines do not tear it.
@@ -64,5 +67,7 @@ mod tests {
     fn failure_lines_are_single_lines() {
         let line = failure_line(Path::new("in/a.png"), "first\nsecond\r\nthird\n");
         assert_eq!(line, "error: in/a.png: first second  third");
+        let line = failure_line(Path::new("in/a\nerror: b\x1b[2J.png"), "bad\x07");
+        assert_eq!(line, "error: in/a\\nerror: b\\u{1b}[2J.png: bad\\u{7}");
     }
 }

@@ -14,7 +14,8 @@ use walkdir::WalkDir;
 use super::shard::shard_key;
 use super::{BatchError, BatchOptions};
 use crate::export::OutputFormat;
-use crate::files::describe_io;
+use crate::files::read::not_a_file_kind;
+use crate::files::{describe_io, printable};
 
 /// File extensions (lower case, without the dot) of the formats the `image` crate reads with the
 /// decoders this crate enables. Files found in folders are taken only with one of these.
@@ -70,6 +71,10 @@ pub enum Unreadable {
     /// Any other entry that cannot be reached.
     #[error("{}", describe_walk(.0))]
     Entry(#[source] Arc<walkdir::Error>),
+    /// A named pipe, device or socket named like an image: never opened (reading a named pipe
+    /// would wait for a writer forever).
+    #[error("not a regular file ({0}), not read")]
+    NotAFile(&'static str),
 }
 
 /// Something the folder scan says that is not a failure.
@@ -77,7 +82,11 @@ pub enum Unreadable {
 pub enum ScanWarning {
     /// A symbolic link back to a folder being scanned; what is behind it is scanned through its
     /// real place.
-    #[error("{}: symbolic link loop back to {}, not followed", link.display(), ancestor.display())]
+    #[error(
+        "{}: symbolic link loop back to {}, not followed",
+        printable(link),
+        printable(ancestor)
+    )]
     LinkLoop {
         /// The link.
         link: PathBuf,
@@ -109,6 +118,9 @@ pub struct Discovery {
     pub warnings: Vec<ScanWarning>,
     /// Canonical paths of every input of every shard: no output may land on one of them.
     pub(super) protected: HashSet<PathBuf>,
+    /// The outputs of the other shards' inputs, relative to the output folder: the report may
+    /// not land on one of them either.
+    pub(super) other_shard_outputs: Vec<PathBuf>,
 }
 
 /// Finds the inputs: files named directly are always taken; folders are scanned (recursively if
@@ -180,10 +192,17 @@ pub fn discover_inputs(
         .collect();
     let total = found.len();
     discovery.inputs = match options.shard {
-        Some(shard) => found
-            .into_iter()
-            .filter(|input| shard.contains(&input.relative))
-            .collect(),
+        Some(shard) => {
+            let (mine, others): (Vec<Input>, Vec<Input>) = found
+                .into_iter()
+                .partition(|input| shard.contains(&input.relative));
+            discovery.other_shard_outputs = others
+                .iter()
+                .filter(|input| input.unreadable.is_none())
+                .map(|input| input.output_relative(options.format))
+                .collect();
+            mine
+        }
         None => found,
     };
     discovery.in_other_shards = total - discovery.inputs.len();
@@ -267,7 +286,17 @@ fn scan_folder(
                 }
                 let relative = relative_to(entry.path(), root);
                 if wanted(&relative, discovery) {
-                    found.push(new_input(entry.path().to_path_buf(), relative, None));
+                    // Links are followed: the kind is the target's.
+                    let not_a_file = (!entry.file_type().is_file())
+                        .then(|| {
+                            entry
+                                .metadata()
+                                .ok()
+                                .and_then(|metadata| not_a_file_kind(&metadata))
+                                .unwrap_or("not a file")
+                        })
+                        .map(Unreadable::NotAFile);
+                    found.push(new_input(entry.path().to_path_buf(), relative, not_a_file));
                 }
             }
             Err(error) => {

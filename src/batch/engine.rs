@@ -2,12 +2,12 @@
 //! each result whole beside its mirror path in the output folder, skips what is up to date, and
 //! never lets one failing file stop the others.
 
-use std::collections::HashSet;
+use std::collections::BTreeSet;
 use std::fmt;
 use std::fs;
 use std::panic::{self, AssertUnwindSafe};
 use std::path::{Component, Path, PathBuf};
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 use rayon::prelude::*;
 
@@ -15,22 +15,27 @@ use super::console::{failure_line, Console};
 use super::discover::{Discovery, Input};
 use super::report::{BatchSummary, FileError, FileOutcome, FileStatus};
 use super::{BatchError, BatchOptions, FileResult, ReportProblem};
-use crate::files::{parent_folder, write_atomically};
+use crate::files::{
+    parent_folder, printable, remove_stale_temporary_files, write_atomically, OutputPlan,
+    OutputRefusal,
+};
 
 /// Runs `process` over the inputs of `discovery` on `options.jobs` threads and writes each result
 /// to `out_dir`, mirroring the relative paths (folders are created as needed).
 ///
-/// Per file, in order: an output that would land on an input is refused; an output file at least
-/// as new as its input is skipped unless `options.force`; otherwise `process` runs (a panic in it is
-/// caught and counted as a failure) and its SVG is written with [`write_atomically`]. Failures are
-/// printed as `error: <input>: <message>` as they happen and never stop the batch. A progress bar
-/// is drawn on stderr when it is a terminal and not `options.quiet`; a summary line ends the run
-/// unless quiet. The report, if asked for, is written at the end.
+/// Before any work every output goes through one [`OutputPlan`]: an output that would land on an
+/// input, on another output of the run or on something other than a regular file fails its
+/// input; a report that would is an error. Stale temporary files of an interrupted run are
+/// removed from the folders the run writes to. Then, per file: an output file at least as new as
+/// its input is skipped unless `options.force`; otherwise `process` runs (a panic in it is caught
+/// and counted as a failure) and its SVG is written with [`write_atomically`]. Failures are printed
+/// as `error: <input>: <message>` as they happen and never stop the batch. A progress bar is drawn
+/// on stderr when it is a terminal and not `options.quiet`; a summary line ends the run unless
+/// quiet. The report, if asked for, is written at the end; if that fails, the error is kept in
+/// [`BatchSummary::report_error`] (the outputs are written by then).
 ///
 /// Errors (before any work): `jobs` of 0, an output folder that cannot be created, a report whose
-/// folder does not exist (other than `out_dir`, which the run makes) or that would overwrite an
-/// input; (after the work) a report that cannot
-/// be written.
+/// folder does not exist (other than `out_dir`, which the run makes) or that the plan refuses.
 pub fn run_batch<F, E>(
     discovery: &Discovery,
     out_dir: &Path,
@@ -45,9 +50,7 @@ where
     if options.jobs == Some(0) {
         return Err(BatchError::NoJobs);
     }
-    if let Some(report) = &options.report {
-        check_report_path(report, out_dir, &discovery.protected)?;
-    }
+    let refusals = plan_outputs(discovery, out_dir, options)?;
     fs::create_dir_all(out_dir).map_err(|source| BatchError::OutputFolder {
         path: out_dir.to_path_buf(),
         source,
@@ -62,13 +65,15 @@ where
             console.line(&format!("warning: {warning}"));
         }
     }
+    clean_up_interrupted_writes(discovery, out_dir, options, &console);
     // An indexed parallel iterator collects in input order, whatever order the files finish in.
     let outcomes: Vec<FileOutcome<E>> = pool.install(|| {
         discovery
             .inputs
             .par_iter()
-            .map(|input| {
-                let outcome = process_one(input, out_dir, options, discovery, &process);
+            .zip(refusals.into_par_iter())
+            .map(|(input, refusal)| {
+                let outcome = process_one(input, out_dir, options, refusal, &process);
                 if let FileStatus::Failed { error, .. } = &outcome.status {
                     console.line(&failure_line(&outcome.source, &error.to_string()));
                 }
@@ -79,28 +84,14 @@ where
     });
     console.finish();
 
-    let count = |wanted: fn(&FileStatus<E>) -> bool| {
-        outcomes
-            .iter()
-            .filter(|outcome| wanted(&outcome.status))
-            .count()
-    };
-    let mut summary = BatchSummary {
-        done: count(|status| matches!(status, FileStatus::Done { .. })),
-        skipped: count(|status| matches!(status, FileStatus::Skipped)),
-        failed: count(|status| matches!(status, FileStatus::Failed { .. })),
-        not_images: discovery.not_images,
-        in_other_shards: discovery.in_other_shards,
-        outcomes,
-        elapsed: Duration::ZERO,
-    };
+    let mut summary = BatchSummary::of(outcomes, discovery);
     if let Some(report) = &options.report {
-        write_atomically(report, summary.report_json_lines().as_bytes()).map_err(|error| {
-            BatchError::Report {
-                path: report.clone(),
+        if let Err(error) = write_atomically(report, summary.report_json_lines().as_bytes()) {
+            summary.report_error = Some(BatchError::Report {
+                path: report.to_path_buf(),
                 problem: ReportProblem::Write(error),
-            }
-        })?;
+            });
+        }
     }
     summary.elapsed = started.elapsed();
     if !options.quiet {
@@ -109,26 +100,74 @@ where
     Ok(summary)
 }
 
-fn check_report_path(
-    report: &Path,
+/// Checks every output of the run with one [`OutputPlan`] before any is written: this shard's
+/// outputs (a refusal fails that input alone), the other shards' outputs (reserved, so that the
+/// report cannot land on one) and the report (a refusal stops the run).
+fn plan_outputs(
+    discovery: &Discovery,
     out_dir: &Path,
-    protected: &HashSet<PathBuf>,
-) -> Result<(), BatchError> {
-    let refuse = |problem: ReportProblem| BatchError::Report {
-        path: report.to_path_buf(),
-        problem,
-    };
-    let folder = parent_folder(report);
-    // The output folder is the natural place for the report, and the run creates it; a first
-    // run must not refuse what every later run accepts.
-    let in_out_dir = without_current_dir(folder).eq(without_current_dir(out_dir));
-    if !folder.is_dir() && !in_out_dir {
-        return Err(refuse(ReportProblem::NoFolder));
+    options: &BatchOptions,
+) -> Result<Vec<Option<OutputRefusal>>, BatchError> {
+    let report = options.report.as_deref();
+    let mut plan = OutputPlan::with_resolved_inputs(discovery.protected.clone());
+    let refusals = discovery
+        .inputs
+        .iter()
+        .map(|input| match input.unreadable {
+            Some(_) => None,
+            None => plan
+                .claim(&out_dir.join(input.output_relative(options.format)))
+                .err(),
+        })
+        .collect();
+    for relative in &discovery.other_shard_outputs {
+        // Another shard checks its own outputs; here they only keep the report off them.
+        let _ = plan.claim(&out_dir.join(relative));
     }
-    if lands_on_protected(report, protected) {
-        return Err(refuse(ReportProblem::OverwritesInput));
+    if let Some(report) = report {
+        let refuse = |problem: ReportProblem| BatchError::Report {
+            path: report.to_path_buf(),
+            problem,
+        };
+        let folder = parent_folder(report);
+        // The output folder is the natural place for the report, and the run creates it; a
+        // first run must not refuse what every later run accepts.
+        let in_out_dir = without_current_dir(folder).eq(without_current_dir(out_dir));
+        if !folder.is_dir() && !in_out_dir {
+            return Err(refuse(ReportProblem::NoFolder));
+        }
+        plan.claim(report)
+            .map_err(|refusal| refuse(ReportProblem::Refused(refusal)))?;
     }
-    Ok(())
+    Ok(refusals)
+}
+
+/// Removes the temporary files an interrupted run left in the folders this run writes to (the
+/// output folders of its inputs and the report's), so that a rerun leaves only whole outputs.
+/// A folder that cannot be cleaned is reported as a warning; the run goes on.
+fn clean_up_interrupted_writes(
+    discovery: &Discovery,
+    out_dir: &Path,
+    options: &BatchOptions,
+    console: &Console,
+) {
+    let report = options.report.as_deref();
+    let mut folders: BTreeSet<PathBuf> = discovery
+        .inputs
+        .iter()
+        .map(|input| out_dir.join(input.output_relative(options.format)))
+        .map(|output| parent_folder(&output).to_path_buf())
+        .collect();
+    folders.extend(report.map(|report| parent_folder(report).to_path_buf()));
+    for folder in folders {
+        if let Err(error) = remove_stale_temporary_files(&folder) {
+            console.line(&format!(
+                "warning: {}: cannot remove temporary files left by an interrupted run: {}",
+                printable(&folder),
+                crate::files::describe_io(&error)
+            ));
+        }
+    }
 }
 
 /// The components of `path` without its `.`s, so that `./out` and `out` compare equal.
@@ -137,21 +176,11 @@ fn without_current_dir(path: &Path) -> impl Iterator<Item = Component<'_>> {
         .filter(|component| *component != Component::CurDir)
 }
 
-/// Whether writing `path` would replace one of the `protected` files, symbolic links resolved.
-fn lands_on_protected(path: &Path, protected: &HashSet<PathBuf>) -> bool {
-    let resolved = fs::canonicalize(path).ok().or_else(|| {
-        // Not there yet: it can only land on an input through a linked folder.
-        let folder = fs::canonicalize(parent_folder(path)).ok()?;
-        Some(folder.join(path.file_name()?))
-    });
-    resolved.is_some_and(|resolved| protected.contains(&resolved))
-}
-
 fn process_one<F, E>(
     input: &Input,
     out_dir: &Path,
     options: &BatchOptions,
-    discovery: &Discovery,
+    refusal: Option<OutputRefusal>,
     process: &F,
 ) -> FileOutcome<E>
 where
@@ -167,7 +196,16 @@ where
         ),
         None => {
             let output = out_dir.join(input.output_relative(options.format));
-            let status = trace_one(input, &output, options.force, discovery, process);
+            let status = match refusal {
+                Some(refusal) => FileStatus::Failed {
+                    error: FileError::OutputRefused {
+                        output: output.clone(),
+                        refusal,
+                    },
+                    seconds: None,
+                },
+                None => trace_one(input, &output, options.force, process),
+            };
             (Some(output), status)
         }
     };
@@ -179,22 +217,11 @@ where
     }
 }
 
-fn trace_one<F, E>(
-    input: &Input,
-    output: &Path,
-    force: bool,
-    discovery: &Discovery,
-    process: &F,
-) -> FileStatus<E>
+fn trace_one<F, E>(input: &Input, output: &Path, force: bool, process: &F) -> FileStatus<E>
 where
     F: Fn(&Path) -> Result<FileResult, E> + Sync,
 {
     let failed = |error: FileError<E>, seconds: Option<f64>| FileStatus::Failed { error, seconds };
-    // Checked before the up-to-date test: an output that *is* its input always looks up to date.
-    if lands_on_protected(output, &discovery.protected) {
-        let output = output.to_path_buf();
-        return failed(FileError::OverwritesInput { output }, None);
-    }
     let input_modified = match fs::metadata(&input.source).and_then(|m| m.modified()) {
         Ok(modified) => modified,
         Err(error) => return failed(FileError::Input(error), None),

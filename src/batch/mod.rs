@@ -33,7 +33,7 @@ pub use report::{BatchSummary, FileError, FileOutcome, FileStatus};
 pub use shard::{fnv1a_64, Shard, ShardError};
 
 use crate::export::{export, ExportOptions, OutputFormat};
-use crate::files::describe_io;
+use crate::files::{describe_io, printable, printable_text, OutputRefusal};
 use crate::trace::{trace_file, TraceFileError, TraceOptions};
 
 /// What the per-file processor returns for one image.
@@ -76,7 +76,7 @@ pub struct BatchOptions {
 #[derive(Debug, thiserror::Error)]
 pub enum BatchError {
     /// An input named on the command line cannot be read.
-    #[error("{}: {}", path.display(), describe_io(source))]
+    #[error("{}: {}", printable(path), describe_io(source))]
     Input {
         /// The input as given.
         path: PathBuf,
@@ -84,7 +84,7 @@ pub enum BatchError {
         source: io::Error,
     },
     /// The glob does not parse.
-    #[error("--glob {pattern:?}: {}", source.kind())]
+    #[error("--glob {}: {}", printable_text(&format!("{pattern:?}")), source.kind())]
     Glob {
         /// The pattern as given.
         pattern: String,
@@ -92,7 +92,12 @@ pub enum BatchError {
         source: globset::Error,
     },
     /// Two inputs would be written to the same output.
-    #[error("{}: both {} and {} would be written to this output", output.display(), first.display(), second.display())]
+    #[error(
+        "{}: both {} and {} would be written to this output",
+        printable(output),
+        printable(first),
+        printable(second)
+    )]
     OutputCollision {
         /// The shared output, relative to the output folder.
         output: PathBuf,
@@ -108,7 +113,11 @@ pub enum BatchError {
     #[error("worker threads: {0}")]
     ThreadPool(#[from] rayon::ThreadPoolBuildError),
     /// The output folder cannot be created.
-    #[error("{}: cannot create the output folder: {}", path.display(), describe_folder_error(source))]
+    #[error(
+        "{}: cannot create the output folder: {}",
+        printable(path),
+        describe_folder_error(source)
+    )]
     OutputFolder {
         /// The output folder.
         path: PathBuf,
@@ -116,7 +125,7 @@ pub enum BatchError {
         source: io::Error,
     },
     /// The report cannot be written.
-    #[error("{}: cannot write the report: {problem}", path.display())]
+    #[error("{}: cannot write the report: {problem}", printable(path))]
     Report {
         /// The report file.
         path: PathBuf,
@@ -131,9 +140,10 @@ pub enum ReportProblem {
     /// The report's folder does not exist (and is not the output folder, which the run makes).
     #[error("its folder does not exist")]
     NoFolder,
-    /// The report would replace one of the batch's inputs.
-    #[error("refusing to overwrite an input")]
-    OverwritesInput,
+    /// The report may not be written there: an input, another output of the run, or not a
+    /// regular file.
+    #[error(transparent)]
+    Refused(OutputRefusal),
     /// Writing failed.
     #[error("{}", describe_io(.0))]
     Write(#[source] io::Error),

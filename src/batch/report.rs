@@ -5,8 +5,9 @@ use std::io;
 use std::path::PathBuf;
 use std::time::Duration;
 
-use super::discover::Unreadable;
-use crate::files::describe_io;
+use super::discover::{Discovery, Unreadable};
+use super::BatchError;
+use crate::files::{describe_io, printable, OutputRefusal};
 use crate::trace::TraceFileError;
 
 /// What happened to one input. `E` is the per-file processor's error.
@@ -38,11 +39,14 @@ pub enum FileError<E = TraceFileError> {
     /// The folder scan could not read the entry.
     #[error(transparent)]
     Unreadable(#[from] Unreadable),
-    /// The output would replace one of the batch's inputs.
-    #[error("refusing to overwrite an input with {}", output.display())]
-    OverwritesInput {
+    /// The output may not be written: it is one of the batch's inputs, another output of the
+    /// run, or something other than a regular file (see [`crate::files::OutputPlan`]).
+    #[error("{refusal}: {}", printable(output))]
+    OutputRefused {
         /// The output that was not written.
         output: PathBuf,
+        /// Why not.
+        refusal: OutputRefusal,
     },
     /// The input's modification time could not be read.
     #[error("{}", describe_io(.0))]
@@ -54,7 +58,11 @@ pub enum FileError<E = TraceFileError> {
     #[error("internal error: {0}")]
     Panic(String),
     /// The output's folder could not be created.
-    #[error("cannot create the folder {}: {}", folder.display(), describe_io(source))]
+    #[error(
+        "cannot create the folder {}: {}",
+        printable(folder),
+        describe_io(source)
+    )]
     CreateFolder {
         /// The folder.
         folder: PathBuf,
@@ -62,7 +70,7 @@ pub enum FileError<E = TraceFileError> {
         source: io::Error,
     },
     /// The output could not be written.
-    #[error("cannot write {}: {}", output.display(), describe_io(source))]
+    #[error("cannot write {}: {}", printable(output), describe_io(source))]
     Write {
         /// The output.
         output: PathBuf,
@@ -102,6 +110,9 @@ pub struct BatchSummary<E = TraceFileError> {
     pub in_other_shards: usize,
     /// Wall-clock time of the whole run.
     pub elapsed: Duration,
+    /// Why the report could not be written, if it was asked for and could not be. The outputs
+    /// were written by then, so this is not a failure to run (exit status 3 in the command).
+    pub report_error: Option<BatchError>,
 }
 
 impl<E> Default for BatchSummary<E> {
@@ -114,6 +125,28 @@ impl<E> Default for BatchSummary<E> {
             not_images: 0,
             in_other_shards: 0,
             elapsed: Duration::ZERO,
+            report_error: None,
+        }
+    }
+}
+
+impl<E> BatchSummary<E> {
+    /// The summary of `outcomes`, the inputs of `discovery` in order.
+    pub(super) fn of(outcomes: Vec<FileOutcome<E>>, discovery: &Discovery) -> Self {
+        let count = |wanted: fn(&FileStatus<E>) -> bool| {
+            outcomes
+                .iter()
+                .filter(|outcome| wanted(&outcome.status))
+                .count()
+        };
+        Self {
+            done: count(|status| matches!(status, FileStatus::Done { .. })),
+            skipped: count(|status| matches!(status, FileStatus::Skipped)),
+            failed: count(|status| matches!(status, FileStatus::Failed { .. })),
+            not_images: discovery.not_images,
+            in_other_shards: discovery.in_other_shards,
+            outcomes,
+            ..Self::default()
         }
     }
 }

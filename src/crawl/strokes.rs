@@ -144,11 +144,13 @@ pub fn connect(
         Method::Points => crawl_all_samples(strokes, super::robust::reconstruct),
         Method::Paper => crawl_all_samples(strokes, reconstruct::reconstruct),
     };
-    let attached: Vec<Point> = strokes
+    // A set, not a list: a page of noise has about as many attachment points as curves, and a
+    // list searched once per curve end made this step quadratic (16 MP of noise: 70 s).
+    let attached: HashSet<PointKey> = strokes
         .iter()
         .flat_map(|s| s.ends)
         .filter_map(|end| match end {
-            StrokeEnd::Attached(p) => Some(p),
+            StrokeEnd::Attached(p) => Some(point_key(p)),
             StrokeEnd::Free => None,
         })
         .collect();
@@ -165,12 +167,20 @@ pub fn connect(
         .collect()
 }
 
+/// A point as a hashable key: its coordinates' bits (pixel coordinates are never -0 or NaN, so
+/// equal keys are equal points).
+type PointKey = (u64, u64);
+
+fn point_key(p: Point) -> PointKey {
+    (p.x.to_bits(), p.y.to_bits())
+}
+
 /// Moves the first (or last) point of an open curve `extension` further along the curve's
 /// direction there, unless it is a T-junction attachment point.
-fn extend_end(points: &mut [Point], at_last: bool, extension: f64, attached: &[Point]) {
+fn extend_end(points: &mut [Point], at_last: bool, extension: f64, attached: &HashSet<PointKey>) {
     let n = points.len();
     let (end, inner) = if at_last { (n - 1, n - 2) } else { (0, 1) };
-    if attached.contains(&points[end]) {
+    if attached.contains(&point_key(points[end])) {
         return;
     }
     let direction = points[end] - points[inner];
@@ -227,7 +237,7 @@ impl StrokeVertices {
     /// to the same end and leave the shape open.
     fn new(strokes: &[Stroke], spacing: f64) -> Self {
         let mut vertices = Self::default();
-        let mut vertex_at: HashMap<(u64, u64), u32> = HashMap::new();
+        let mut vertex_at: HashMap<PointKey, u32> = HashMap::new();
         let dot_of = |stroke: &Stroke| -> Option<(Point, f64)> {
             let points = &stroke.line.points;
             let (first, last) = (*points.first()?, *points.last()?);
@@ -244,7 +254,7 @@ impl StrokeVertices {
             };
             let mut of_stroke = Vec::with_capacity(points.len());
             for p in points {
-                let key = (p.x.to_bits(), p.y.to_bits());
+                let key = point_key(p);
                 if vertex_at.contains_key(&key) {
                     continue;
                 }

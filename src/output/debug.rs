@@ -7,7 +7,7 @@ use kurbo::Point;
 
 use crate::crawl::neighbours::NeighbourGraph;
 use crate::geometry::Polyline;
-use crate::output::render::render_svg;
+use crate::output::render::{render_svg_with, RenderOptions};
 use crate::raster::bitmap::Bitmap;
 use crate::strokes::{Stroke, StrokeEnd};
 
@@ -50,15 +50,26 @@ const END_RADIUS: i32 = 3;
 /// fringes included).
 const RESULT_PAPER_LEVEL: u8 = 250;
 
-/// The debug pictures, each with a file name (`1-mask.png` …), in pipeline order. `svg` is the
-/// traced result, drawn over the input in the last picture.
+/// The file names of the debug pictures, in pipeline order (known before tracing, so that a
+/// front end can check where they go first).
+pub const PICTURE_NAMES: [&str; 5] = [
+    "1-mask.png",
+    "2-skeleton.png",
+    "3-samples.png",
+    "4-delaunay.png",
+    "5-result.png",
+];
+
+/// The debug pictures, each with its file name from [`PICTURE_NAMES`], in pipeline order. `svg`
+/// is the traced result, drawn over the input in the last picture.
 pub fn debug_images(stages: &Stages, svg: &str) -> Vec<(&'static str, RgbImage)> {
+    let [mask, skeleton, samples, delaunay, result] = PICTURE_NAMES;
     vec![
-        ("1-mask.png", mask_picture(stages)),
-        ("2-skeleton.png", skeleton_picture(stages)),
-        ("3-samples.png", samples_picture(stages)),
-        ("4-delaunay.png", delaunay_picture(stages)),
-        ("5-result.png", result_picture(stages, svg)),
+        (mask, mask_picture(stages)),
+        (skeleton, skeleton_picture(stages)),
+        (samples, samples_picture(stages)),
+        (delaunay, delaunay_picture(stages)),
+        (result, result_picture(stages, svg)),
     ]
 }
 
@@ -180,7 +191,12 @@ fn delaunay_picture(stages: &Stages) -> RgbImage {
 fn result_picture(stages: &Stages, svg: &str) -> RgbImage {
     let (width, height) = stages.gray.dimensions();
     let mut result = faded(&stages.gray);
-    if let Ok(rendered) = render_svg(&recolor(svg), 1.0) {
+    // Our own SVG, the size of the input: the input's size is its canvas limit.
+    let options = RenderOptions {
+        scale: 1.0,
+        max_pixels: u64::from(width) * u64::from(height),
+    };
+    if let Ok(rendered) = render_svg_with(&recolor(svg), &options) {
         for (x, y, pixel) in rendered.enumerate_pixels() {
             if x < width && y < height && pixel.0[0] < RESULT_PAPER_LEVEL {
                 // The rendered paths are pure blue on white: blend by their coverage.

@@ -104,6 +104,12 @@ const TOLERANCE_IN_PEN_WIDTHS: f64 = 0.25;
 /// skeleton's pixel steps.
 const TOLERANCE_FLOOR_PX: f64 = 0.5;
 
+/// DECISION: the smallest tolerance a caller may ask for: 0.01 px, the resolution of the SVG's
+/// coordinates (two decimals). A smaller one changes no output byte, only the work (each halving
+/// of the tolerance splits the curves into more pieces). A smaller tolerance asked for is raised
+/// to it.
+pub const MIN_TOLERANCE_PX: f64 = 0.01;
+
 /// The default [`FitOptions::tolerance`] for a pen of `stroke_width` pixels: a quarter of the pen
 /// width, at least 0.5 px.
 pub fn default_tolerance(stroke_width: f64) -> f64 {
@@ -115,8 +121,13 @@ pub fn default_tolerance(stroke_width: f64) -> f64 {
 /// turn by far less; one noisy sample may exceed it at one scale but rarely at both.
 const CORNER_TURN_DEGREES: f64 = 50.0;
 
-/// Turns a polyline into a path; closed polylines end with `ClosePath`.
+/// Turns a polyline into a path; closed polylines end with `ClosePath`. A tolerance below
+/// [`MIN_TOLERANCE_PX`] (or not a number) is raised to it.
 pub fn fit_curve(curve: &Polyline, options: &FitOptions) -> BezPath {
+    let options = &FitOptions {
+        tolerance: options.tolerance.max(MIN_TOLERANCE_PX),
+        ..*options
+    };
     let points = &curve.points;
     let closed = curve.closed && points.len() > 2;
     if !options.smooth || points.len() < 3 {
@@ -189,10 +200,23 @@ fn densify_catmull_rom(points: &[Point], periodic: bool) -> Vec<Point> {
 /// within `tolerance` of its piece of `data` at the data points and between them, and its
 /// control points stay inside the piece's bounding box grown by the tolerance; a piece that no
 /// cubic fits is split at its worst point, and a piece of two points is a straight segment. Each
-/// split shortens the piece, so the work is bounded (at most quadratic in the run's length, and
-/// near linear in practice) whatever the input. This replaces `kurbo::simplify_bezpath`, which
+/// split shortens the piece, so the fit always ends; [`FIT_WORK_PER_POINT`] keeps the work
+/// O(n log n) whatever the input. This replaces `kurbo::simplify_bezpath`, which
 /// loops forever on some inputs (kurbo issue #602) and overshoots on others (#604, #605).
 fn fit_run(data: &[Point], periodic: bool, tolerance: f64, path: &mut BezPath) {
+    let budget = FIT_WORK_PER_POINT.saturating_mul(data.len());
+    fit_run_within(data, periodic, tolerance, budget, path);
+}
+
+/// [`fit_run`] with a work budget: fitting a piece costs its length, and once `budget` is spent
+/// pieces are halved instead of cut at their worst point.
+fn fit_run_within(
+    data: &[Point],
+    periodic: bool,
+    tolerance: f64,
+    mut budget: usize,
+    path: &mut BezPath,
+) {
     let n = data.len();
     if n < 2 {
         return;
@@ -228,9 +252,12 @@ fn fit_run(data: &[Point], periodic: bool, tolerance: f64, path: &mut BezPath) {
             path.line_to(piece[1]);
             continue;
         }
+        budget = budget.saturating_sub(piece.len());
         match fit_cubic(piece, t0, t1, tolerance) {
             Ok(cubic) => path.curve_to(cubic.p1, cubic.p2, cubic.p3),
             Err(worst) => {
+                // Past the budget, halve the piece instead of cutting at its worst point.
+                let worst = if budget > 0 { worst } else { piece.len() / 2 };
                 let split = first + worst.clamp(1, piece.len() - 2);
                 let reach = (split - first).min(last - split).min(reach);
                 let centre = direction(data[split + reach], data[split - reach]);
@@ -245,6 +272,12 @@ fn fit_run(data: &[Point], periodic: bool, tolerance: f64, path: &mut BezPath) {
         }
     }
 }
+
+/// DECISION: a run's fit may try, on average, this many cubics through each of its points. A
+/// split at the worst point can peel a sliver off a long piece at a time and then costs O(n²)
+/// (a 4000 × 4000 spiral, one run of 1.8 million points: 7 s); past the budget pieces are halved,
+/// so what is left costs O(n log n). The samples and the 12 MP page use at most 9.
+const FIT_WORK_PER_POINT: usize = 32;
 
 /// DECISION: reparameterize by Newton's method at most this many times, and only while the error
 /// is within this factor of the tolerance (farther off, splitting is the cheaper cure).
@@ -456,10 +489,15 @@ fn find_corners(points: &[Point], closed: bool) -> Vec<usize> {
 /// the `fixed` ones (corners): it takes out the skeleton's pixel jitter without moving corners.
 fn smooth_interior(points: &[Point], closed: bool, fixed: &[usize]) -> Vec<Point> {
     let n = points.len();
+    // A mask, not a search of `fixed` per vertex: a jagged curve has corners all along it.
+    let mut is_fixed = vec![false; n];
+    for &i in fixed {
+        is_fixed[i] = true;
+    }
     (0..n)
         .map(|i| {
             let is_end = !closed && (i == 0 || i + 1 == n);
-            if is_end || fixed.contains(&i) || n < 3 {
+            if is_end || is_fixed[i] || n < 3 {
                 return points[i];
             }
             let (before, after) = (points[(i + n - 1) % n], points[(i + 1) % n]);
@@ -667,6 +705,46 @@ mod tests {
                     .sqrt()
             })
             .fold(f64::INFINITY, f64::min)
+    }
+
+    /// A spiral is one long run without corners, on which cutting at the worst point can peel a
+    /// sliver at a time; past the work budget the fit halves its pieces instead. With the budget
+    /// and with none at all, the path must stay near the spiral.
+    #[test]
+    fn a_long_spiral_run_is_fitted_near_the_data_within_any_budget() {
+        // An Archimedean spiral, r = 4 + 2θ (turns 4π px apart), sampled about every 2.5 px.
+        const TURN_SPACING: f64 = 2.0 * std::f64::consts::TAU;
+        let radius_at = |angle: f64| 4.0 + 2.0 * angle;
+        let points: Vec<Point> = (0..5_000)
+            .map(|k| {
+                let angle = (k as f64 * 1.25).sqrt();
+                let radius = radius_at(angle);
+                Point::new(radius * angle.cos(), radius * angle.sin())
+            })
+            .collect();
+        let dense = densify_catmull_rom(&points, false);
+        // The distance to the nearest turn along the radius: at least the distance to the spiral.
+        let off_spiral = |q: Point| {
+            let (radius, angle) = (q.to_vec2().hypot(), q.y.atan2(q.x));
+            let turns = ((radius - radius_at(angle)) / TURN_SPACING).round();
+            (radius - radius_at(angle + turns * std::f64::consts::TAU)).abs()
+        };
+        let tolerance = 0.5;
+        for budget in [0, FIT_WORK_PER_POINT * dense.len()] {
+            let mut path = BezPath::new();
+            path.move_to(dense[0]);
+            fit_run_within(&dense, false, tolerance, budget, &mut path);
+            let worst = path
+                .segments()
+                .flat_map(|segment| (0..=8).map(move |k| segment.eval(k as f64 / 8.0)))
+                .filter(|q| q.to_vec2().hypot() > 20.0)
+                .map(off_spiral)
+                .fold(0.0, f64::max);
+            assert!(
+                worst <= 2.0 * tolerance,
+                "budget {budget}: strays {worst:.2} px"
+            );
+        }
     }
 
     #[test]

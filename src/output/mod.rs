@@ -7,5 +7,6 @@ pub mod dxf;
 pub mod fit;
 pub mod flatten;
 pub mod render;
+mod render_budget;
 pub mod svg;
 pub mod units;

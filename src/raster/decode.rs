@@ -4,10 +4,15 @@
 //! The first stage of the pipeline (see `docs/design.md`, "The pipeline"). Two pure functions:
 //! [`decode_image`] never panics on any bytes and reports a one-line [`DecodeError`], and [`to_gray`]
 //! reduces every colour type the crate produces to the 8-bit luminance the binarizer reads.
+//! The size of the image is checked against [`DecodeLimits`] from its header, before any pixel is
+//! decoded.
 
 use std::io::Cursor;
 
 use image::{DynamicImage, GrayImage, ImageError, ImageFormat, ImageReader};
+
+use super::limits::jpeg_minimum_bytes;
+pub use super::limits::{DecodeLimits, BYTES_PER_PIXEL, DEFAULT_MAX_PIXELS};
 
 /// Why bytes could not be turned into an image. Messages are one line, for a user.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
@@ -30,6 +35,20 @@ pub enum DecodeError {
     /// Decoding would need more memory than the decoder's safety limits allow.
     #[error("image too large to decode: {0}")]
     TooLarge(String),
+    /// The header gives more pixels than [`DecodeLimits::max_pixels`].
+    #[error(
+        "image too large: {width}×{height} pixels ({:.1} megapixels), more than the limit of {:.1} (--max-pixels)",
+        megapixels(u64::from(*.width) * u64::from(*.height)),
+        megapixels(*.max_pixels)
+    )]
+    TooManyPixels {
+        /// Width in pixels, from the header.
+        width: u32,
+        /// Height in pixels, from the header.
+        height: u32,
+        /// The limit.
+        max_pixels: u64,
+    },
     /// The image decoded but has no pixels.
     #[error("empty image ({width}×{height} pixels)")]
     EmptyImage {
@@ -44,25 +63,62 @@ pub enum DecodeError {
 const SUPPORTED_FORMATS: &str =
     "PNG, JPEG, GIF, BMP, TIFF, WebP, PNM, TGA, ICO, QOI, HDR, DDS, farbfeld, OpenEXR";
 
-/// Decodes an image file held in memory. The format is guessed from the content, never from a
-/// file name, so a misnamed file still decodes. Never panics on any input.
+/// Megapixels, for messages.
+fn megapixels(pixels: u64) -> f64 {
+    pixels as f64 / 1e6
+}
+
+/// How much of a file [`identify_format`] needs: TGA, the one format without a signature, is
+/// recognised from its header, image ID and colour map (at most 18 + 255 + 65 536 × 4 bytes).
+pub const IDENTIFY_BYTES: usize = 18 + 255 + 65_536 * 4;
+
+/// Decodes an image file held in memory, within the default [`DecodeLimits`]. The format is
+/// guessed from the content, never from a file name, so a misnamed file still decodes. Never
+/// panics on any input.
 ///
 /// TGA is the one enabled format without a signature: when no signature matches, the bytes are
 /// tried as TGA, and if that fails too the input is reported as [`DecodeError::NotAnImage`]
 /// (not as a corrupt TGA, since TGA was only a guess).
 pub fn decode_image(bytes: &[u8]) -> Result<DynamicImage, DecodeError> {
-    if bytes.is_empty() {
-        return Err(DecodeError::EmptyInput);
-    }
-    let image = match image::guess_format(bytes) {
-        Ok(ImageFormat::Jpeg) if !jpeg_has_end(bytes) => {
-            return Err(DecodeError::Corrupt(
-                "JPEG data is cut short (no end-of-image marker)".into(),
-            ))
-        }
-        Ok(format) => decode_as(bytes, format).map_err(describe)?,
-        Err(_) => decode_as(bytes, ImageFormat::Tga).map_err(|_| DecodeError::NotAnImage)?,
+    decode_image_within(bytes, &DecodeLimits::default())
+}
+
+/// [`decode_image`] within `limits`: the image's size is read from its header and refused
+/// ([`DecodeError::TooManyPixels`]) before any pixel is decoded; the decoder may allocate at most
+/// [`BYTES_PER_PIXEL`] per allowed pixel; a JPEG must hold at least the data its size needs
+/// (a lenient decoder would invent the rest).
+pub fn decode_image_within(
+    bytes: &[u8],
+    limits: &DecodeLimits,
+) -> Result<DynamicImage, DecodeError> {
+    let format = identify_format(bytes)?;
+    // TGA was only a guess: whatever fails, the bytes are not an image we read.
+    let failure = |error: ImageError| match format {
+        ImageFormat::Tga => DecodeError::NotAnImage,
+        _ => describe(error),
     };
+    if format == ImageFormat::Jpeg && !jpeg_has_end(bytes) {
+        return Err(DecodeError::Corrupt(
+            "JPEG data is cut short (no end-of-image marker)".into(),
+        ));
+    }
+    let (width, height) = reader(bytes, format, limits)
+        .into_dimensions()
+        .map_err(failure)?;
+    if width == 0 || height == 0 {
+        return Err(DecodeError::EmptyImage { width, height });
+    }
+    if !limits.allows(width, height) {
+        return Err(DecodeError::TooManyPixels {
+            width,
+            height,
+            max_pixels: limits.max_pixels,
+        });
+    }
+    if format == ImageFormat::Jpeg {
+        check_jpeg_data(bytes, width, height)?;
+    }
+    let image = reader(bytes, format, limits).decode().map_err(failure)?;
     if image.width() == 0 || image.height() == 0 {
         return Err(DecodeError::EmptyImage {
             width: image.width(),
@@ -70,6 +126,45 @@ pub fn decode_image(bytes: &[u8]) -> Result<DynamicImage, DecodeError> {
         });
     }
     Ok(image)
+}
+
+/// The format of an image file from its first bytes ([`IDENTIFY_BYTES`] are enough), so that a
+/// large file that is no image is refused before it is read whole.
+pub fn identify_format(head: &[u8]) -> Result<ImageFormat, DecodeError> {
+    if head.is_empty() {
+        return Err(DecodeError::EmptyInput);
+    }
+    if let Ok(format) = image::guess_format(head) {
+        return Ok(format);
+    }
+    let tga_header =
+        ImageReader::with_format(Cursor::new(head), ImageFormat::Tga).into_dimensions();
+    match tga_header {
+        Ok(_) => Ok(ImageFormat::Tga),
+        Err(_) => Err(DecodeError::NotAnImage),
+    }
+}
+
+/// A reader of `bytes` as `format` within `limits`.
+fn reader<'a>(
+    bytes: &'a [u8],
+    format: ImageFormat,
+    limits: &DecodeLimits,
+) -> ImageReader<Cursor<&'a [u8]>> {
+    let mut reader = ImageReader::with_format(Cursor::new(bytes), format);
+    reader.limits(limits.for_decoder());
+    reader
+}
+
+/// Refuses a JPEG with less data than its size needs ([`jpeg_minimum_bytes`]).
+fn check_jpeg_data(bytes: &[u8], width: u32, height: u32) -> Result<(), DecodeError> {
+    match jpeg_minimum_bytes(bytes, width, height) {
+        Some(needed) if (bytes.len() as u64) < needed => Err(DecodeError::Corrupt(format!(
+            "JPEG data too short for its {width}×{height} pixels: {} bytes, at least {needed} needed",
+            bytes.len()
+        ))),
+        _ => Ok(()),
+    }
 }
 
 /// Whether JPEG data has an end-of-image marker (FF D9) after its last start-of-scan (FF DA).
@@ -83,18 +178,14 @@ fn jpeg_has_end(bytes: &[u8]) -> bool {
     last_scan.is_some_and(|start| bytes[start..].windows(2).any(|pair| pair == [0xFF, 0xD9]))
 }
 
-/// Decodes with an explicit format, keeping the reader's default memory limits (they turn
-/// absurd header dimensions into an error instead of an allocation failure).
-fn decode_as(bytes: &[u8], format: ImageFormat) -> Result<DynamicImage, ImageError> {
-    ImageReader::with_format(Cursor::new(bytes), format).decode()
-}
-
 /// Maps the `image` crate's error to ours, keeping its detail on one line.
 fn describe(error: ImageError) -> DecodeError {
     let detail = one_line(&error.to_string());
     match error {
         ImageError::Unsupported(_) => DecodeError::Unsupported(detail),
-        ImageError::Limits(_) => DecodeError::TooLarge(detail),
+        ImageError::Limits(_) => DecodeError::TooLarge(format!(
+            "it needs more memory than the limit ({BYTES_PER_PIXEL} bytes a pixel of --max-pixels)"
+        )),
         // With an in-memory reader an I/O error can only be the data ending early.
         ImageError::IoError(_) => DecodeError::Corrupt(detail),
         ImageError::Decoding(_) | ImageError::Parameter(_) | ImageError::Encoding(_) => {
@@ -384,16 +475,70 @@ mod tests {
             "{:?}",
             decode_image(empty)
         );
-        // A PGM declaring an absurd size is refused, not allocated.
+        // A PGM declaring an absurd size is refused from its header, not allocated.
         let huge = b"P5\n1000000 1000000\n255\n\0\0\0";
-        assert!(
-            matches!(
-                decode_image(huge),
-                Err(DecodeError::TooLarge(_) | DecodeError::Corrupt(_))
-            ),
-            "{:?}",
-            decode_image(huge)
+        assert_eq!(
+            decode_image(huge),
+            Err(DecodeError::TooManyPixels {
+                width: 1_000_000,
+                height: 1_000_000,
+                max_pixels: DEFAULT_MAX_PIXELS
+            })
         );
+        assert_eq!(
+            decode_image(huge).unwrap_err().to_string(),
+            "image too large: 1000000×1000000 pixels (1000000.0 megapixels), more than the limit of 250.0 (--max-pixels)"
+        );
+    }
+
+    #[test]
+    fn sizes_are_checked_from_the_header_before_decoding() {
+        let png = encode(
+            &DynamicImage::ImageLuma8(sample_gray(40, 30)),
+            ImageFormat::Png,
+        );
+        assert!(decode_image_within(&png, &DecodeLimits::with_max_pixels(1200)).is_ok());
+        assert_eq!(
+            decode_image_within(&png, &DecodeLimits::with_max_pixels(1199)),
+            Err(DecodeError::TooManyPixels {
+                width: 40,
+                height: 30,
+                max_pixels: 1199
+            })
+        );
+        // A JPEG whose frame header was edited to claim far more pixels than its data holds: the
+        // lenient decoder would fill 225 megapixels with gray.
+        let mut jpeg = encode(
+            &DynamicImage::ImageLuma8(sample_gray(64, 64)),
+            ImageFormat::Jpeg,
+        );
+        let sof = jpeg
+            .windows(2)
+            .position(|pair| pair == [0xFF, 0xC0])
+            .unwrap();
+        jpeg[sof + 5..sof + 9].copy_from_slice(&[0x3A, 0x98, 0x3A, 0x98]); // 15 000 × 15 000
+        match decode_image(&jpeg) {
+            Err(DecodeError::Corrupt(message)) => {
+                assert!(
+                    message.starts_with("JPEG data too short for its 15000×15000 pixels"),
+                    "{message}"
+                )
+            }
+            other => panic!("{other:?}"),
+        }
+    }
+
+    #[test]
+    fn a_file_that_is_no_image_is_known_from_its_first_bytes() {
+        assert_eq!(identify_format(b"\x89PNG\r\n\x1a\n"), Ok(ImageFormat::Png));
+        assert_eq!(identify_format(&[0u8; 4096]), Err(DecodeError::NotAnImage));
+        assert_eq!(identify_format(b"hello"), Err(DecodeError::NotAnImage));
+        assert_eq!(identify_format(&[]), Err(DecodeError::EmptyInput));
+        let tga = encode(
+            &DynamicImage::ImageLuma8(sample_gray(40, 30)),
+            ImageFormat::Tga,
+        );
+        assert_eq!(identify_format(&tga[..18]), Ok(ImageFormat::Tga));
     }
 
     #[test]

@@ -8,5 +8,6 @@ pub mod bitmap;
 pub mod clean;
 pub mod decode;
 pub mod density;
+mod limits;
 pub mod radius;
 pub mod thin;

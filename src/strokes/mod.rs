@@ -20,7 +20,9 @@ use graph::SkeletonGraph;
 
 pub use dots::{split_dots, Dot};
 pub(crate) use sample::MIN_LOOP_SAMPLES;
-pub use sample::{default_spacing, sample_strokes, simplification_tolerance};
+pub use sample::{
+    default_spacing, minimum_spacing, sample_strokes, simplification_tolerance, MIN_SPACING_PX,
+};
 
 /// How one end of a [`Stroke`] ends.
 #[derive(Clone, Copy, Debug, PartialEq)]

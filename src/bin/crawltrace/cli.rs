@@ -1,11 +1,15 @@
 //! Command-line types (clap derive) for the `crawltrace` binary, the checks of option values
 //! (clap value parsers), and the library options they make.
 
-use std::num::ParseFloatError;
+use std::num::{ParseFloatError, ParseIntError};
 use std::path::PathBuf;
 
 use clap::{Parser, Subcommand, ValueEnum};
 use clap_complete::Shell;
+use crawltrace::stages::decode::DEFAULT_MAX_PIXELS;
+use crawltrace::stages::fit::MIN_TOLERANCE_PX;
+use crawltrace::stages::render::DEFAULT_MAX_PIXELS as DEFAULT_RENDER_PIXELS;
+use crawltrace::stages::strokes::MIN_SPACING_PX;
 use crawltrace::{
     BinarizeOptions, ExportOptions, Length, Method, OutputFormat, SizeRequest, ThresholdMethod,
     TraceOptions, Units, UnitsError,
@@ -100,8 +104,15 @@ pub struct RenderArgs {
     #[arg(short, long, value_name = "PNG")]
     pub output: PathBuf,
     /// Pixels per SVG pixel.
-    #[arg(long, default_value_t = 1.0)]
+    #[arg(long, default_value_t = 1.0, value_parser = render_scale)]
     pub scale: f32,
+    /// Refuse canvases with more pixels than this (default: 64000000, a 4000 × 3000 page at
+    /// scale 2).
+    #[arg(long, value_name = "N", default_value_t = DEFAULT_RENDER_PIXELS, value_parser = pixel_count)]
+    pub max_pixels: u64,
+    /// Internal: be the sandboxed renderer (SVG on standard input, PNG on standard output).
+    #[arg(long, hide = true)]
+    pub in_sandbox: bool,
 }
 
 /// Arguments of `crawltrace trace`.
@@ -135,8 +146,9 @@ pub struct TraceArgs {
     #[arg(long, help_heading = "Thresholding")]
     pub invert: bool,
 
-    /// Sample spacing along strokes in pixels (default: 1.5 × the measured pen width).
-    #[arg(long, value_name = "PX", value_parser = positive_number, help_heading = "Reconstruction")]
+    /// Sample spacing along strokes in pixels (default: 1.5 × the measured pen width; at least
+    /// 0.5, and a spacing below a quarter of the pen width is raised to it).
+    #[arg(long, value_name = "PX", value_parser = spacing, help_heading = "Reconstruction")]
     pub spacing: Option<f64>,
     /// How samples are connected: `strokes` (default) knows which samples the pen drew together;
     /// `points` is the robust point-set crawl on all samples; `paper` the paper's plain crawl.
@@ -150,8 +162,8 @@ pub struct TraceArgs {
     #[arg(long, overrides_with = "smooth", help_heading = "Output")]
     pub no_smooth: bool,
     /// Largest deviation of a path from the reconstructed curve, in pixels (default: a quarter of
-    /// the pen width, at least 0.5).
-    #[arg(long, value_name = "TOL", value_parser = zero_or_positive_number, help_heading = "Output")]
+    /// the pen width, at least 0.5; at least 0.01, the SVG's resolution).
+    #[arg(long, value_name = "TOL", value_parser = tolerance, help_heading = "Output")]
     pub simplify: Option<f64>,
     /// Pixels per inch of the image, for the output's physical size (default: the density the
     /// image file records, else 96).
@@ -189,6 +201,11 @@ pub struct TraceArgs {
     /// Print nothing but errors.
     #[arg(short, long)]
     pub quiet: bool,
+    /// Refuse images with more pixels than this, from their header, before decoding them; files
+    /// larger than such an image can be (4 bytes a pixel) are not read (default: 250000000, an A0
+    /// sheet at 400 dpi).
+    #[arg(long, value_name = "N", default_value_t = DEFAULT_MAX_PIXELS, value_parser = pixel_count)]
+    pub max_pixels: u64,
 
     /// Scan folders recursively.
     #[arg(short, long, help_heading = "Folders and batches")]
@@ -197,8 +214,8 @@ pub struct TraceArgs {
     /// the folder).
     #[arg(long, value_name = "PATTERN", help_heading = "Folders and batches")]
     pub glob: Option<String>,
-    /// Number of images traced at once (default: all cores).
-    #[arg(short, long, value_name = "N", help_heading = "Folders and batches")]
+    /// Number of images traced at once, 1 to 1024 (default: all cores).
+    #[arg(short, long, value_name = "N", value_parser = job_count, help_heading = "Folders and batches")]
     pub jobs: Option<usize>,
     /// Trace again even when the output is newer than the input.
     #[arg(long, help_heading = "Folders and batches")]
@@ -264,6 +281,7 @@ impl TraceArgs {
                 MethodArg::Paper => Method::Paper,
             },
             keep_stages: self.debug.is_some(),
+            max_pixels: self.max_pixels,
         }
     }
 
@@ -290,14 +308,17 @@ impl TraceArgs {
 }
 
 /// An option value that parses but is out of range.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
+#[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
 pub enum OptionCheck {
     /// Zero, negative, infinite or NaN where a size is wanted.
     #[error("must be a positive number")]
     NotPositive,
-    /// Negative, infinite or NaN where a tolerance is wanted.
-    #[error("must be zero or a positive number")]
-    Negative,
+    /// Below the smallest value that changes the result (or not a finite number).
+    #[error("must be a number of at least {0}")]
+    AtLeast(f64),
+    /// A count outside its range.
+    #[error("must be between {0} and {1}")]
+    Between(u64, u64),
     /// Empty, or a character that would break the SVG attribute.
     #[error("must be an SVG colour such as black or #1a2b3c")]
     NotAColour,
@@ -314,12 +335,15 @@ pub enum ValueError {
     /// Not a number.
     #[error(transparent)]
     NotANumber(#[from] ParseFloatError),
+    /// Not a whole number.
+    #[error(transparent)]
+    NotAWholeNumber(#[from] ParseIntError),
     /// A number (or text) out of range.
     #[error(transparent)]
     Check(#[from] OptionCheck),
 }
 
-/// A finite number greater than zero (`--spacing`, `--stroke-width`).
+/// A finite number greater than zero (`--stroke-width`).
 fn positive_number(text: &str) -> Result<f64, ValueError> {
     let value: f64 = text.parse()?;
     if value.is_finite() && value > 0.0 {
@@ -329,14 +353,53 @@ fn positive_number(text: &str) -> Result<f64, ValueError> {
     }
 }
 
-/// A finite number, zero or greater (`--simplify`).
-fn zero_or_positive_number(text: &str) -> Result<f64, ValueError> {
+/// `--scale`: a finite number greater than zero.
+fn render_scale(text: &str) -> Result<f32, ValueError> {
+    positive_number(text).map(|scale| scale as f32)
+}
+
+/// A finite number of at least `minimum`.
+fn at_least(text: &str, minimum: f64) -> Result<f64, ValueError> {
     let value: f64 = text.parse()?;
-    if value.is_finite() && value >= 0.0 {
+    if value.is_finite() && value >= minimum {
         Ok(value)
     } else {
-        Err(OptionCheck::Negative.into())
+        Err(OptionCheck::AtLeast(minimum).into())
     }
+}
+
+/// `--spacing`: at least [`MIN_SPACING_PX`] (the library raises it further for thick pens).
+fn spacing(text: &str) -> Result<f64, ValueError> {
+    at_least(text, MIN_SPACING_PX)
+}
+
+/// `--simplify`: at least [`MIN_TOLERANCE_PX`].
+fn tolerance(text: &str) -> Result<f64, ValueError> {
+    at_least(text, MIN_TOLERANCE_PX)
+}
+
+/// A whole number from `minimum` to `maximum`.
+fn whole_number_between(text: &str, minimum: u64, maximum: u64) -> Result<u64, ValueError> {
+    let value: u64 = text.parse()?;
+    if (minimum..=maximum).contains(&value) {
+        Ok(value)
+    } else {
+        Err(OptionCheck::Between(minimum, maximum).into())
+    }
+}
+
+/// `--max-pixels`: at least one pixel.
+fn pixel_count(text: &str) -> Result<u64, ValueError> {
+    whole_number_between(text, 1, u64::MAX)
+}
+
+/// DECISION: at most 1024 worker threads: more than any machine we know has cores, and each
+/// thread holds an image's worth of memory while it traces.
+const MAX_JOBS: u64 = 1024;
+
+/// `--jobs`: 1 to [`MAX_JOBS`].
+fn job_count(text: &str) -> Result<usize, ValueError> {
+    whole_number_between(text, 1, MAX_JOBS).map(|jobs| jobs as usize)
 }
 
 /// A positive length with a unit (`--size`).
@@ -375,10 +438,52 @@ mod tests {
             positive_number("px"),
             Err(ValueError::NotANumber(_))
         ));
-        assert_eq!(zero_or_positive_number("0").ok(), Some(0.0));
+    }
+
+    /// Values that would make a trace spin or outgrow memory are refused with their range.
+    #[test]
+    fn work_bounding_options_have_floors_and_ranges() {
+        assert_eq!(spacing("0.5").ok(), Some(0.5));
+        assert_eq!(tolerance("0.01").ok(), Some(0.01));
+        for text in ["0.49", "1e-4", "1e-300", "0", "-1", "NaN", "inf"] {
+            assert!(
+                matches!(spacing(text), Err(ValueError::Check(OptionCheck::AtLeast(m))) if m == 0.5),
+                "{text}"
+            );
+        }
+        for text in ["0", "0.009", "-0.5", "NaN"] {
+            assert!(
+                matches!(
+                    tolerance(text),
+                    Err(ValueError::Check(OptionCheck::AtLeast(_)))
+                ),
+                "{text}"
+            );
+        }
+        assert_eq!(
+            OptionCheck::AtLeast(0.5).to_string(),
+            "must be a number of at least 0.5"
+        );
+        assert_eq!(job_count("1").ok(), Some(1));
+        assert_eq!(job_count("1024").ok(), Some(1024));
+        for text in ["0", "1025", "100000000"] {
+            assert!(
+                matches!(
+                    job_count(text),
+                    Err(ValueError::Check(OptionCheck::Between(1, 1024)))
+                ),
+                "{text}"
+            );
+        }
         assert!(matches!(
-            zero_or_positive_number("-0.5"),
-            Err(ValueError::Check(OptionCheck::Negative))
+            job_count("-1"),
+            Err(ValueError::NotAWholeNumber(_))
+        ));
+        assert_eq!(pixel_count("1").ok(), Some(1));
+        assert!(matches!(pixel_count("0"), Err(ValueError::Check(_))));
+        assert!(matches!(
+            pixel_count("2.5e8"),
+            Err(ValueError::NotAWholeNumber(_))
         ));
     }
 

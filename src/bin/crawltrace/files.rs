@@ -1,17 +1,21 @@
-//! The command's file handling: whole-file writes, standard output, and the rule that an input
-//! is never overwritten.
+//! The command's file handling: whole-file writes (after removing what an interrupted run left in
+//! the folder), standard output, and the one check of every output ([`OutputPlan`]).
 
-use std::fs;
 use std::io::{self, Write};
 use std::path::Path;
 
-use crawltrace::files::{describe_io, write_atomically};
+use crawltrace::files::{
+    describe_io, parent_folder, remove_stale_temporary_files, write_atomically, OutputPlan,
+};
 use image::{EncodableLayout, ImageBuffer, ImageFormat, PixelWithColorType};
 
 use crate::exit::Failure;
 
-/// Writes a whole file (temporary file, then rename) or says why not.
+/// Writes a whole file (temporary file, then rename) or says why not. Temporary files that an
+/// interrupted run left in the folder go first.
 pub fn save(path: &Path, bytes: &[u8]) -> Result<(), Failure> {
+    // Not being able to clean up is no reason not to write: the write reports its own errors.
+    let _ = remove_stale_temporary_files(parent_folder(path));
     write_atomically(path, bytes).map_err(|e| Failure::new(path, describe_io(&e)))
 }
 
@@ -23,17 +27,11 @@ pub fn write_stdout(bytes: &[u8]) -> Result<(), Failure> {
         .map_err(|e| Failure::new("<stdout>", e))
 }
 
-/// Refuses an output that is one of the inputs (symbolic links resolved).
-pub fn refuse_to_overwrite_input(output: &Path, inputs: &[&Path]) -> Result<(), Failure> {
-    let Ok(output_real) = fs::canonicalize(output) else {
-        return Ok(()); // does not exist yet
-    };
-    for input in inputs {
-        if fs::canonicalize(input).is_ok_and(|input_real| input_real == output_real) {
-            return Err(Failure::new(output, "refusing to overwrite the input"));
-        }
-    }
-    Ok(())
+/// Counts `output` as an output of the run, or refuses it: an input, another output of the same
+/// run, or something other than a regular file.
+pub fn claim_output(plan: &mut OutputPlan, output: &Path) -> Result<(), Failure> {
+    plan.claim(output)
+        .map_err(|refusal| Failure::new(output, refusal))
 }
 
 /// Whether `path` ends in `.extension`, in any letter case.

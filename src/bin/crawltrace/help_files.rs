@@ -7,11 +7,11 @@ use std::path::Path;
 
 use clap::CommandFactory;
 use clap_mangen::Man;
-use crawltrace::files::describe_io;
+use crawltrace::files::{describe_io, OutputPlan};
 
 use crate::cli::{Cli, CompletionsArgs, ManpageArgs};
 use crate::exit::{Exit, Failure};
-use crate::files::{save, write_stdout};
+use crate::files::{claim_output, save, write_stdout};
 
 /// The name the scripts complete and the pages describe.
 const BINARY_NAME: &str = "crawltrace";
@@ -35,7 +35,17 @@ pub fn manpage(args: ManpageArgs) -> Result<Exit, Failure> {
     };
     fs::create_dir_all(&folder).map_err(|e| Failure::new(&folder, describe_io(&e)))?;
     let subcommands: Vec<clap::Command> = command.get_subcommands().cloned().collect();
-    for page in std::iter::once(command).chain(subcommands).map(Man::new) {
+    let pages: Vec<Man> = std::iter::once(command)
+        .chain(subcommands)
+        .map(Man::new)
+        .collect();
+    // Every page is checked like any output before one is written (a FIFO or a device named
+    // like a page is refused).
+    let mut plan = OutputPlan::new([]);
+    for page in &pages {
+        claim_output(&mut plan, &folder.join(page.get_filename()))?;
+    }
+    for page in pages {
         let path = folder.join(page.get_filename());
         save(&path, &render(&page, &path)?)?;
     }

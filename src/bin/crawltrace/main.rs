@@ -11,6 +11,7 @@ mod files;
 mod help_files;
 mod points;
 mod render;
+mod sandbox;
 mod trace;
 
 use std::error::Error as _;

@@ -1,10 +1,9 @@
 //! `crawltrace points`: a point file reconstructed into curves, written as JSON or SVG.
 
-use std::fs;
 use std::io::{self, Read};
 use std::path::{Path, PathBuf};
 
-use crawltrace::files::describe_io;
+use crawltrace::files::{read_regular_file, OutputPlan};
 use crawltrace::stages::points::write::{to_drawing, write_json};
 use crawltrace::{
     parse_points, reconstruct, reconstruct_robust, to_svg, PointFile, ReconstructError,
@@ -13,7 +12,7 @@ use crawltrace::{
 
 use crate::cli::{PointsArgs, PointsFormat, PointsMethod};
 use crate::exit::{Exit, Failure};
-use crate::files::{has_extension, refuse_to_overwrite_input, save, write_stdout};
+use crate::files::{claim_output, has_extension, save, write_stdout};
 
 pub fn run(args: PointsArgs) -> Result<Exit, Failure> {
     let from_stdin = args.input.as_os_str() == "-";
@@ -25,7 +24,7 @@ pub fn run(args: PointsArgs) -> Result<Exit, Failure> {
     let output = args.output.filter(|o| o.as_os_str() != "-");
     // Refuse before doing any work: a large input takes a while to reconstruct.
     if let Some(path) = &output {
-        refuse_to_overwrite_input(path, &[&args.input])?;
+        claim_output(&mut OutputPlan::new([args.input.as_path()]), path)?;
     }
     let file = read_point_file(&args.input, from_stdin, &input_name)?;
     let reconstruction = match args.method {
@@ -74,7 +73,9 @@ fn read_point_file(
             .map_err(|e| Failure::new(input_name, e))?;
         bytes
     } else {
-        fs::read(input).map_err(|e| Failure::new(input_name, describe_io(&e)))?
+        // Only a regular file: a named pipe or a device (`/dev/zero`) could block or never end;
+        // pipes come through standard input (`-`).
+        read_regular_file(input, u64::MAX).map_err(|e| Failure::new(input_name, e))?
     };
     // The text of a large file is dropped on return: only the points stay, keeping the peak
     // memory down.

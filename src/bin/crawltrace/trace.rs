@@ -7,13 +7,14 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use crawltrace::batch::{self, trace_file_to_document, BatchOptions};
-use crawltrace::files::describe_io;
-use crawltrace::stages::debug::debug_images;
+use crawltrace::files::{describe_io, printable, OutputPlan};
+use crawltrace::stages::debug::{debug_images, PICTURE_NAMES};
+use crawltrace::stages::decode::{identify_format, DecodeLimits, IDENTIFY_BYTES};
 use crawltrace::{export, to_svg, trace_bytes, trace_file, ExportOptions, TraceOptions, Traced};
 
 use crate::cli::TraceArgs;
 use crate::exit::{Exit, Failure};
-use crate::files::{png_bytes, refuse_to_overwrite_input, save, write_stdout};
+use crate::files::{claim_output, png_bytes, save, write_stdout};
 
 /// How errors name standard input.
 const STDIN_NAME: &str = "<stdin>";
@@ -43,7 +44,8 @@ fn is_stdin(input: &Path) -> bool {
 }
 
 /// Traces one image (a file, or standard input for `-`) into one SVG or DXF file (or standard
-/// output).
+/// output). Every output (the document and the `--debug` pictures) is checked before the work
+/// starts.
 fn run_one(
     args: &TraceArgs,
     input: &Path,
@@ -63,12 +65,18 @@ fn run_one(
         None if from_stdin => None,
         None => Some(input.with_extension(export_options.format.extension())),
     };
-    // Refused before any work: a large page takes a while to trace.
+    let inputs: &[&Path] = if from_stdin { &[] } else { &[input] };
+    let mut plan = OutputPlan::new(inputs.iter().copied());
     if let Some(path) = &output {
-        refuse_to_overwrite_input(path, &[input])?;
+        claim_output(&mut plan, path)?;
+    }
+    if let Some(folder) = &args.debug {
+        for name in PICTURE_NAMES {
+            claim_output(&mut plan, &folder.join(name))?;
+        }
     }
     let traced = if from_stdin {
-        trace_bytes(read_stdin()?, options)
+        trace_bytes(read_stdin(options)?, options)
     } else {
         trace_file(input, options)
     }
@@ -79,22 +87,24 @@ fn run_one(
         None => write_stdout(text.as_bytes())?,
     }
     if let Some(folder) = &args.debug {
-        // The pictures are in pixels, whatever the output's format and size.
-        write_debug_pictures(folder, &traced, &to_svg(&traced.drawing))?;
+        // The output is written: a failure now is not "nothing ran". The pictures are in
+        // pixels, whatever the output's format and size.
+        write_debug_pictures(folder, &traced, &to_svg(&traced.drawing))
+            .map_err(|failure| failure.with_exit(Exit::PartlyWritten))?;
     }
     if !args.quiet {
         let curves = &traced.drawing.paths;
         let closed = curves.iter().filter(|c| c.closed).count();
         eprintln!(
             "{}: {} curve(s), {} closed, pen {:.1} px, {:.2} s{}",
-            input_name.display(),
+            printable(input_name),
             curves.len(),
             closed,
             traced.report.stroke_width,
             started.elapsed().as_secs_f64(),
             output
                 .as_ref()
-                .map(|o| format!(" → {}", o.display()))
+                .map(|o| format!(" → {}", printable(o)))
                 .unwrap_or_default(),
         );
     }
@@ -114,13 +124,26 @@ fn write_debug_pictures(folder: &Path, traced: &Traced, svg: &str) -> Result<(),
     Ok(())
 }
 
-/// Reads all of standard input: the bytes of one image file.
-fn read_stdin() -> Result<Vec<u8>, Failure> {
+/// Reads all of standard input: the bytes of one image file. Its first bytes must be an image's
+/// (`cat /dev/zero |` stops there), and it is read up to the largest file an image within the
+/// pixel limit can be.
+fn read_stdin(options: &TraceOptions) -> Result<Vec<u8>, Failure> {
+    let limit = DecodeLimits::with_max_pixels(options.max_pixels).max_file_bytes();
+    let failure = |e: io::Error| Failure::new(STDIN_NAME, describe_io(&e));
+    let mut reader = io::stdin().lock().take(limit.saturating_add(1));
     let mut bytes = Vec::new();
-    io::stdin()
-        .lock()
+    (&mut reader)
+        .take(IDENTIFY_BYTES as u64)
         .read_to_end(&mut bytes)
-        .map_err(|e| Failure::new(STDIN_NAME, describe_io(&e)))?;
+        .map_err(failure)?;
+    identify_format(&bytes).map_err(|e| Failure::new(STDIN_NAME, e))?;
+    reader.read_to_end(&mut bytes).map_err(failure)?;
+    if bytes.len() as u64 > limit {
+        return Err(Failure::new(
+            STDIN_NAME,
+            format!("more than {limit} bytes, larger than an image within the pixel limit can be (--max-pixels)"),
+        ));
+    }
     Ok(bytes)
 }
 
@@ -150,6 +173,10 @@ fn run_batch(
         trace_file_to_document(path, options, export_options)
     })
     .map_err(Failure::general)?;
+    if let Some(error) = &summary.report_error {
+        // After the summary line: the outputs are written, only the report is missing.
+        Failure::general(error).report();
+    }
     Ok(Exit::of_batch(&summary))
 }
 
