@@ -117,7 +117,7 @@ def test_bad_files_and_data_are_one_line_errors(tmp_path):
         (tmp_path / "missing.png", "missing.png: no such file"),
         (b"hello, not an image", "not an image, or not a format crawltrace reads"),
         (b"", "empty file (0 bytes)"),
-        (tmp_path, "is a folder, not a file"),
+        (tmp_path, "not a regular file (a folder)"),
     ]
     for source, message in cases:
         with pytest.raises(CrawltraceError) as raised:

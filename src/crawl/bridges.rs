@@ -97,6 +97,11 @@ const MIN_RAY_CROSSING_SINE: f64 = 0.05;
 /// The `k` of the continuation cost `length · exp(k·(θa² + θb²))`, θ in radians: a partner
 /// straight ahead is preferred to one turning by θ ≥ 35° up to 1.5 times its length.
 const TURN_COST: f64 = 1.1;
+/// DECISION: a bridge that turns a corner costs its length times this, so that a straight
+/// partner within this factor of the length is preferred (issue 8: "prefer the straight partner
+/// when one exists within 1.5× the length"); where two lines cross with gaps at the crossing the
+/// ends then go on across, not round the corner.
+const CORNER_COST_FACTOR: f64 = 1.5;
 
 /// A stroke may be bridged to itself only with at least this many samples (the paper's "more
 /// than two edges" before a chain closes).
@@ -454,7 +459,7 @@ fn bridge_shape(a: BridgeEnd, b: BridgeEnd, rims: f64, stroke_width: f64) -> Opt
             .flatten()
             .min_by(|x, y| x.1.total_cmp(&y.1))
             .map(|(corner, length)| BridgeShape {
-                cost: length,
+                cost: CORNER_COST_FACTOR * length,
                 length,
                 corner: Some(corner),
             })
