@@ -4,6 +4,7 @@
 //! the completion scripts and manual pages. The DXF itself is read back with ezdxf in
 //! `python/tests/test_dxf.py`.
 
+mod hostile;
 mod support;
 
 use std::io::Cursor;
@@ -22,22 +23,6 @@ fn png_bytes(image: &GrayImage) -> Vec<u8> {
     bytes
 }
 
-/// The CRC-32 of PNG chunks (ISO 3309, reflected polynomial 0xEDB88320).
-fn crc32(bytes: &[u8]) -> u32 {
-    let mut crc = u32::MAX;
-    for &byte in bytes {
-        crc ^= u32::from(byte);
-        for _ in 0..8 {
-            crc = if crc & 1 == 1 {
-                (crc >> 1) ^ 0xEDB8_8320
-            } else {
-                crc >> 1
-            };
-        }
-    }
-    !crc
-}
-
 /// `png` with a valid `pHYs` chunk of `dpi` (rounded to whole pixels per metre) after `IHDR`.
 fn png_with_dpi(png: &[u8], dpi: f64) -> Vec<u8> {
     let per_metre = (dpi / 0.0254).round() as u32;
@@ -49,7 +34,7 @@ fn png_with_dpi(png: &[u8], dpi: f64) -> Vec<u8> {
     let mut bytes = png[..header_end].to_vec();
     bytes.extend_from_slice(&9u32.to_be_bytes());
     bytes.extend_from_slice(&body);
-    bytes.extend_from_slice(&crc32(&body).to_be_bytes());
+    bytes.extend_from_slice(&hostile::crc32(&body).to_be_bytes());
     bytes.extend_from_slice(&png[header_end..]);
     bytes
 }
