@@ -18,6 +18,10 @@
 //! 244.3, 1.89×). One drawing takes about 6.7 ms to read, decode and trace; the engine adds about
 //! 0.6 ms per file (mostly flushing the output to disk: `run_batch_200_files_no_work`).
 
+#[path = "../tests/support/random.rs"]
+mod random;
+use random::SplitMix64;
+
 use std::fs;
 use std::hint::black_box;
 use std::path::{Path, PathBuf};
@@ -53,31 +57,13 @@ fn main() {
     drop(DRAWINGS.lock().map(|mut drawings| drawings.take()));
 }
 
-/// SplitMix64: deterministic pseudo-random numbers without a dependency.
-struct SplitMix64(u64);
-
-impl SplitMix64 {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in low..high.
-    fn range(&mut self, low: f64, high: f64) -> f64 {
-        low + (high - low) * ((self.next() >> 11) as f64 / (1u64 << 53) as f64)
-    }
-}
-
 /// One skip-stroke drawing as SVG: three or four shapes (circle, ellipse, rounded rectangle,
 /// open wave), each in its own quarter of the page so that they do not cross, drawn with dashes
 /// (the strokes and gaps of a sketch) of a pen width, dash and gap picked by `random`.
 fn drawing_svg(random: &mut SplitMix64) -> String {
     let quarter = f64::from(DRAWING_SIDE) / 2.0;
     let mut shapes = String::new();
-    let skipped_quarter = (random.next() % 5) as usize; // 4: all four quarters are drawn
+    let skipped_quarter = (random.next_u64() % 5) as usize; // 4: all four quarters are drawn
     for quarter_index in (0..4).filter(|&index| index != skipped_quarter) {
         let left = quarter * (quarter_index % 2) as f64;
         let top = quarter * (quarter_index / 2) as f64;
@@ -91,7 +77,7 @@ fn drawing_svg(random: &mut SplitMix64) -> String {
         let style = format!(
             r#"fill="none" stroke="black" stroke-width="{pen:.1}" stroke-linecap="round" stroke-dasharray="{dash:.1} {gap:.1}""#
         );
-        let shape = match random.next() % 4 {
+        let shape = match random.next_u64() % 4 {
             0 => format!(r#"<circle cx="{cx:.1}" cy="{cy:.1}" r="{size:.1}" {style}/>"#),
             1 => format!(
                 r#"<ellipse cx="{cx:.1}" cy="{cy:.1}" rx="{size:.1}" ry="{:.1}" {style}/>"#,
@@ -130,7 +116,7 @@ fn drawings() -> PathBuf {
     let mut drawings = DRAWINGS.lock().expect("no benchmark panicked");
     let folder = drawings.get_or_insert_with(|| {
         let root = tempfile::tempdir().expect("a temporary folder");
-        let mut random = SplitMix64(2016);
+        let mut random = SplitMix64::new(2016);
         for index in 0..FILES {
             let svg = drawing_svg(&mut random);
             let rgba = crawltrace::render_svg(&svg, 1.0).expect("the drawing renders");

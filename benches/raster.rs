@@ -1,6 +1,10 @@
 //! Raster stages on a synthetic 4000×3000 (12 MP) scan of a skip-stroke drawing: binarize (evenly
 //! lit and shaded), estimate_stroke_width, clean and thin. Run with `cargo bench --bench raster`.
 
+#[path = "../tests/support/random.rs"]
+mod random;
+use random::SplitMix64;
+
 use std::sync::LazyLock;
 
 use crawltrace::stages::binarize::{binarize, BinarizeOptions, ThresholdMethod};
@@ -12,24 +16,6 @@ use image::{GrayImage, Luma};
 
 const WIDTH: u32 = 4000;
 const HEIGHT: u32 = 3000;
-
-/// SplitMix64: deterministic pseudo-random numbers without a dependency.
-struct SplitMix64(u64);
-
-impl SplitMix64 {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in low..high.
-    fn range(&mut self, low: f64, high: f64) -> f64 {
-        low + (high - low) * ((self.next() >> 11) as f64 / (1u64 << 53) as f64)
-    }
-}
 
 /// Ink coverage of each pixel (0..=1), drawn stroke by stroke.
 struct Canvas {
@@ -70,7 +56,7 @@ impl Canvas {
 /// strokes with a wobbly hand, as skip-stroke drawings are; then a scan of it (paper 235, ink
 /// 35, sensor noise), optionally under uneven light (a side gradient and vignetting).
 fn page(shaded: bool) -> GrayImage {
-    let mut random = SplitMix64(12);
+    let mut random = SplitMix64::new(12);
     let mut canvas = Canvas {
         coverage: vec![0.0; (WIDTH * HEIGHT) as usize],
     };
@@ -78,7 +64,7 @@ fn page(shaded: bool) -> GrayImage {
     for _ in 0..40 {
         let centre = (random.range(300.0, 3700.0), random.range(300.0, 2700.0));
         let (rx, ry) = (random.range(60.0, 350.0), random.range(60.0, 350.0));
-        let square = random.next() % 3 == 0;
+        let square = random.next_u64() % 3 == 0;
         let outline = |t: f64| {
             let angle = t * std::f64::consts::TAU;
             let (c, s) = (angle.cos(), angle.sin());
@@ -108,7 +94,7 @@ fn page(shaded: bool) -> GrayImage {
             t += span + random.range(-0.01, 0.008);
         }
     }
-    let mut noise = SplitMix64(99);
+    let mut noise = SplitMix64::new(99);
     let mut gray = GrayImage::new(WIDTH, HEIGHT);
     for (i, pixel) in gray.pixels_mut().enumerate() {
         let (x, y) = ((i as u32 % WIDTH) as f64, (i as u32 / WIDTH) as f64);
@@ -119,7 +105,7 @@ fn page(shaded: bool) -> GrayImage {
             1.0
         };
         let cover = f64::from(canvas.coverage[i]);
-        let value = (235.0 - cover * 200.0) * light + (noise.next() % 13) as f64 - 6.0;
+        let value = (235.0 - cover * 200.0) * light + (noise.next_u64() % 13) as f64 - 6.0;
         *pixel = Luma([value.round().clamp(0.0, 255.0) as u8]);
     }
     gray

@@ -6,6 +6,10 @@
 //! cargo bench --bench reconstruct
 //! ```
 
+#[path = "../tests/support/random.rs"]
+mod random;
+use random::SplitMix64;
+
 use std::f64::consts::TAU;
 
 use crawltrace::stages::crawl::algorithm::crawl;
@@ -22,23 +26,10 @@ fn main() {
 
 const SIZES: [usize; 3] = [10_000, 100_000, 1_000_000];
 
-/// SplitMix64: a tiny deterministic generator, so every run measures the same points.
-struct SplitMix64(u64);
-
-impl SplitMix64 {
-    fn unit(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
-
 /// `count` points on many closed curves (ellipses of 100 to 1000 points, about 0.01 apart, each
 /// in its own cell of a grid), in file order: the same scenes as `examples/many_curves.rs`.
 fn curve_points(count: usize) -> Vec<Point> {
-    let mut random = SplitMix64(7);
+    let mut random = SplitMix64::new(7);
     let columns = ((count as f64 / 550.0).sqrt().ceil() as usize).max(1);
     let mut points = Vec::with_capacity(count);
     let mut cell = 0;

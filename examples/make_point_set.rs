@@ -3,32 +3,18 @@
 //! outliers), sampled with a little jitter by a seeded generator, so the file is the same on
 //! every run. Run: `cargo run --example make_point_set [OUT_FILE]`.
 
+#[path = "../tests/support/random.rs"]
+mod random;
+use random::SplitMix64;
+
 use std::f64::consts::TAU;
 use std::fmt::Write as _;
-
-/// SplitMix64: a tiny seeded generator, so the file never depends on the OS.
-struct Random(u64);
-
-impl Random {
-    fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    /// A value in [-amount, amount].
-    fn jitter(&mut self, amount: f64) -> f64 {
-        (2.0 * self.next() - 1.0) * amount
-    }
-}
 
 fn main() {
     let out = std::env::args()
         .nth(1)
         .unwrap_or_else(|| "samples/points/shapes.txt".to_string());
-    let mut random = Random(2016);
+    let mut random = SplitMix64::new(2016);
     let mut points: Vec<(f64, f64)> = Vec::new();
     let mut ellipse = |points: &mut Vec<(f64, f64)>, c: (f64, f64), r: (f64, f64), n: usize| {
         for i in 0..n {
@@ -41,7 +27,7 @@ fn main() {
     ellipse(&mut points, (120.0, 115.0), (45.0, 30.0), 34);
     // A sparse circle.
     ellipse(&mut points, (330.0, 90.0), (40.0, 40.0), 18);
-    let mut random = Random(7);
+    let mut random = SplitMix64::new(7);
     // A square and a house: sharp corners.
     let mut polygon = |points: &mut Vec<(f64, f64)>, corners: &[(f64, f64)], step: f64| {
         for k in 0..corners.len() {

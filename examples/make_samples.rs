@@ -98,7 +98,7 @@ fn write_sample(folder: &Path, name: &str, style: Style, seed: u64, scene: &Scen
         })
         .collect();
     // People start anywhere and draw in any order.
-    random.shuffle(&mut strokes);
+    random.shuffle_by_index(&mut strokes);
     let sketch_svg = sketch::strokes_to_svg(scene.width, scene.height, &strokes);
     let rendered = crawltrace::render_svg(&sketch_svg, 1.0).expect("sketch renders");
     let image_path = folder.join(format!("{name}.{}", style.extension()));

@@ -12,21 +12,12 @@
 //! cargo run --release --example many_curves -- 1000000 --circles 500 > circles.txt
 //! ```
 
+#[path = "../tests/support/random.rs"]
+mod random;
+use random::SplitMix64;
+
 use std::f64::consts::TAU;
 use std::io::{self, BufWriter, Write};
-
-/// SplitMix64: a tiny deterministic generator, so the file is the same on every run.
-struct SplitMix64(u64);
-
-impl SplitMix64 {
-    fn unit(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
 
 fn main() -> io::Result<()> {
     let count: usize = match std::env::args().nth(1).map(|text| text.parse()) {
@@ -37,7 +28,7 @@ fn main() -> io::Result<()> {
             std::process::exit(2);
         }
     };
-    let mut random = SplitMix64(7);
+    let mut random = SplitMix64::new(7);
     let mut out = BufWriter::new(io::stdout().lock());
     if std::env::args().nth(2).as_deref() == Some("--circles") {
         let per_circle = std::env::args()

@@ -20,7 +20,7 @@ use std::path::PathBuf;
 
 use crawltrace::{reconstruct, reconstruct_robust};
 use point_sets::families::FAMILIES;
-use point_sets::{Instance, Random};
+use point_sets::{Instance, SplitMix64};
 use rayon::prelude::*;
 
 /// The seed the rules were developed on.
@@ -75,7 +75,7 @@ fn instance_seed(seed: u64, family: &str, k: usize) -> u64 {
     for byte in family.bytes() {
         mixed = (mixed ^ u64::from(byte)).wrapping_mul(0x100_0000_01B3);
     }
-    let mut random = Random::new(mixed ^ (k as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15));
+    let mut random = SplitMix64::new(mixed ^ (k as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15));
     random.next_u64()
 }
 
@@ -128,7 +128,7 @@ fn main() {
             let outcomes: Vec<(usize, Instance, Outcome)> = (0..options.sets)
                 .into_par_iter()
                 .map(|k| {
-                    let mut random = Random::new(instance_seed(seed, family.name, k));
+                    let mut random = SplitMix64::new(instance_seed(seed, family.name, k));
                     let instance = (family.make)(&mut random, k);
                     let outcome = run(&instance);
                     (k, instance, outcome)

@@ -7,6 +7,10 @@
 
 #![allow(dead_code)] // each includer uses a different part
 
+#[path = "../../tests/support/random.rs"]
+mod random;
+use random::SplitMix64;
+
 use std::f64::consts::{PI, TAU};
 use std::fmt::Write as _;
 use std::io::Cursor;
@@ -53,36 +57,18 @@ pub fn encode_png(gray: &GrayImage) -> Vec<u8> {
     bytes
 }
 
-/// SplitMix64: deterministic pseudo-random numbers without a dependency.
-pub struct SplitMix64(pub u64);
-
-impl SplitMix64 {
-    pub fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in low..high.
-    pub fn range(&mut self, low: f64, high: f64) -> f64 {
-        low + (high - low) * ((self.next() >> 11) as f64 / (1u64 << 53) as f64)
-    }
-}
-
 /// A page like the sample: a 4×4 grid of cells, each holding one to three shapes (circles,
 /// ellipses, rectangles, polygons, stars, concentric rings, spirals and waves), every one drawn
 /// as a skip-stroke sketch — short dashes with small gaps, a 3 px pen — and rendered with resvg.
 pub fn generate_page() -> GrayImage {
-    let mut random = SplitMix64(2026);
+    let mut random = SplitMix64::new(2026);
     let mut svg = format!(
         r#"<svg xmlns="http://www.w3.org/2000/svg" width="{WIDTH}" height="{HEIGHT}" viewBox="0 0 {WIDTH} {HEIGHT}"><g fill="none" stroke="black" stroke-width="3" stroke-linecap="round">"#
     );
     let (cell_w, cell_h) = (f64::from(WIDTH) / 4.0, f64::from(HEIGHT) / 4.0);
     for row in 0..4 {
         for column in 0..4 {
-            let shapes = 1 + random.next() % 3;
+            let shapes = 1 + random.next_u64() % 3;
             for k in 0..shapes {
                 // Shapes side by side in their cell, none touching.
                 let slot_w = cell_w / shapes as f64;
@@ -127,7 +113,7 @@ fn shape(random: &mut SplitMix64, centre: (f64, f64), size: f64) -> Vec<(f64, f6
             })
             .collect()
     };
-    match random.next() % 7 {
+    match random.next_u64() % 7 {
         0 => around(180, &|_| (size, size)),
         1 => {
             let squash = random.range(0.45, 0.8);
@@ -135,7 +121,7 @@ fn shape(random: &mut SplitMix64, centre: (f64, f64), size: f64) -> Vec<(f64, f6
         }
         2 | 3 => {
             // A polygon of 3–6 corners, turned at random.
-            let corners = 3 + (random.next() % 4) as usize;
+            let corners = 3 + (random.next_u64() % 4) as usize;
             let turn = random.range(0.0, TAU);
             (0..=corners)
                 .map(|i| {
@@ -182,7 +168,7 @@ fn shape(random: &mut SplitMix64, centre: (f64, f64), size: f64) -> Vec<(f64, f6
 /// A phone-scan-like colour JPEG of `page` (quality 85): warm paper, light falling off to one
 /// side and to the corners, and sensor noise; ink stays dark but not black.
 pub fn scan_jpeg(page: &GrayImage) -> Vec<u8> {
-    let mut noise = SplitMix64(99);
+    let mut noise = SplitMix64::new(99);
     let (width, height) = page.dimensions();
     let mut rgb = RgbImage::new(width, height);
     for (x, y, pixel) in rgb.enumerate_pixels_mut() {
@@ -194,7 +180,7 @@ pub fn scan_jpeg(page: &GrayImage) -> Vec<u8> {
         let light = (1.0 - 0.45 * u) * (1.0 - 0.7 * (du * du + dv * dv));
         let ink = 1.0 - f64::from(page.get_pixel(x, y)[0]) / 255.0;
         let base = 238.0 - ink * 190.0;
-        let grain = (noise.next() % 17) as f64 - 8.0;
+        let grain = (noise.next_u64() % 17) as f64 - 8.0;
         let channel = |tint: f64| (base * tint * light + grain).round().clamp(0.0, 255.0) as u8;
         *pixel = Rgb([channel(1.0), channel(0.97), channel(0.9)]);
     }

@@ -8,13 +8,13 @@ use crawltrace::stages::svg::format_number;
 use crawltrace::{to_svg, CurvePath, Drawing};
 use kurbo::{Affine, Vec2};
 
-use crate::families::{hand_for, pen_width, Family, FAMILIES};
-use crate::figure::Figure;
-use crate::geometry::TrueCurve;
-use crate::paper::Style;
-use crate::pen::{draw_dot, draw_intervals, pen_intervals, Hand};
-use crate::random::SplitMix64;
-use crate::sketch::{strokes_to_svg, Stroke};
+use super::families::{hand_for, pen_width, Family, FAMILIES};
+use super::figure::Figure;
+use super::geometry::TrueCurve;
+use super::paper::Style;
+use super::pen::{draw_dot, draw_intervals, pen_intervals, Hand};
+use super::random::SplitMix64;
+use super::sketch::{strokes_to_svg, Stroke};
 
 /// Truth polylines stay this close to the dense true curves, px (as for the samples).
 const TRUTH_TOLERANCE: f64 = 0.05;
@@ -134,7 +134,7 @@ fn sketch_figure(
         ));
     }
     // People start anywhere and draw in any order.
-    random.shuffle(&mut strokes);
+    random.shuffle_by_index(&mut strokes);
     strokes
 }
 

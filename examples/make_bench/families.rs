@@ -6,14 +6,14 @@ use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 use kurbo::{Affine, Point, Vec2};
 
-use crate::figure::{arrange, Dot, Figure};
-use crate::geometry::TrueCurve;
-use crate::objects;
-use crate::paper::Style;
-use crate::pen::{pen_intervals, Corners, Hand, Plan};
-use crate::random::SplitMix64;
-use crate::shapes::{blob, ellipse, polygon, polyline, star, Builder, Shape};
-use crate::touching;
+use super::figure::{arrange, Dot, Figure};
+use super::geometry::TrueCurve;
+use super::objects;
+use super::paper::Style;
+use super::pen::{pen_intervals, Corners, Hand, Plan};
+use super::random::SplitMix64;
+use super::shapes::{blob, ellipse, polygon, polyline, star, Builder, Shape};
+use super::touching;
 
 /// Rows of figures on one page are at most this wide, px, and the whole figure at most this big
 /// (pages stay within about 300–900 px with their margins).

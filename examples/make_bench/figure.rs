@@ -3,9 +3,9 @@
 
 use kurbo::{Affine, Point, Rect, Vec2};
 
-use crate::pen::Plan;
-use crate::random::SplitMix64;
-use crate::shapes::Shape;
+use super::pen::Plan;
+use super::random::SplitMix64;
+use super::shapes::Shape;
 
 /// One true curve and how it is drawn.
 #[derive(Clone, Debug)]

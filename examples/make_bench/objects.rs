@@ -5,11 +5,11 @@ use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 use kurbo::{Affine, Point, Vec2};
 
-use crate::families::{any_angle, dot, few, fit_on_page, object_spacing, several};
-use crate::figure::Figure;
-use crate::pen::Hand;
-use crate::random::SplitMix64;
-use crate::shapes::{blob, ellipse, polygon, polyline, star, Builder, Shape};
+use super::families::{any_angle, dot, few, fit_on_page, object_spacing, several};
+use super::figure::Figure;
+use super::pen::Hand;
+use super::random::SplitMix64;
+use super::shapes::{blob, ellipse, polygon, polyline, star, Builder, Shape};
 
 fn p(x: f64, y: f64) -> Point {
     Point::new(x, y)
@@ -644,7 +644,7 @@ fn words_with_periods(hand: &Hand, random: &mut SplitMix64) -> Figure {
         let period = dot(p(0.0, 0.0), hand.pen, random);
         let away = period.diameter / 2.0 + hand.pen / 2.0 + random.range(1.0, 3.0) * hand.pen;
         if random.chance(0.6) {
-            figure.dots.push(crate::figure::Dot {
+            figure.dots.push(super::figure::Dot {
                 centre: p(x + away, -period.diameter / 2.0 + hand.pen / 2.0),
                 ..period
             });
@@ -678,7 +678,7 @@ fn dotted_line(hand: &Hand, random: &mut SplitMix64) -> Figure {
     let mut position = Point::ORIGIN;
     let mut heading: f64 = 0.0;
     for _ in 0..count {
-        figure.dots.push(crate::figure::Dot {
+        figure.dots.push(super::figure::Dot {
             centre: position,
             diameter: diameter * random.range(0.85, 1.15),
         });

@@ -4,9 +4,9 @@
 
 use kurbo::{Point, Vec2};
 
-use crate::geometry::TrueCurve;
-use crate::random::SplitMix64;
-use crate::sketch::{wobbled_points, Stroke};
+use super::geometry::TrueCurve;
+use super::random::SplitMix64;
+use super::sketch::{wobbled_points, Stroke};
 
 /// A gap stays this many pen widths clear of a sharp corner when corners keep their ink (as in
 /// the samples), so the corner is not cut off by the hand.

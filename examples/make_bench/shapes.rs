@@ -6,7 +6,7 @@ use std::f64::consts::{PI, TAU};
 
 use kurbo::{Affine, Point, Vec2};
 
-use crate::random::SplitMix64;
+use super::random::SplitMix64;
 
 /// Arcs are sampled at most this far apart, px.
 const ARC_STEP: f64 = 1.0;

@@ -8,11 +8,11 @@ use std::f64::consts::{PI, TAU};
 
 use kurbo::{Affine, Point, Vec2};
 
-use crate::families::{any_angle, few, several};
-use crate::figure::Figure;
-use crate::pen::{Corners, Hand};
-use crate::random::SplitMix64;
-use crate::shapes::{
+use super::families::{any_angle, few, several};
+use super::figure::Figure;
+use super::pen::{Corners, Hand};
+use super::random::SplitMix64;
+use super::shapes::{
     arc_length_where, blob, ellipse, insert_chains, insert_protrusions, polygon, polyline,
     rounded_strip, spike, Builder, Chain, Protrusion, Shape,
 };
@@ -71,7 +71,7 @@ pub fn spikes(hand: &mut Hand, random: &mut SplitMix64) -> Figure {
             }
             1 => {
                 let width = pen * [0.5, 1.0, 1.5][random.index(3)];
-                crate::shapes::finger(0.0, width, random.range(30.0, 60.0))
+                super::shapes::finger(0.0, width, random.range(30.0, 60.0))
             }
             _ => rounded_strip(
                 0.0,
@@ -401,7 +401,7 @@ fn legs(body: &Shape, rx: f64, ground: f64, pen: f64, random: &mut SplitMix64) -
         ) else {
             continue;
         };
-        let y_of = |s: f64| crate::shapes::point_at(body, s).0.y;
+        let y_of = |s: f64| super::shapes::point_at(body, s).0.y;
         let foot = match xs.get(i + 1) {
             Some(&next) if random.chance(0.25) => {
                 // Touching: the foot ends 0–1 pen widths (centre lines) from the next leg.

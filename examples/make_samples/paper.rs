@@ -9,7 +9,7 @@ use image::{
     Rgb, RgbImage, RgbaImage,
 };
 
-use crate::random::{smoothstep, value_noise, SplitMix64};
+use super::random::{smoothstep, value_noise, SplitMix64};
 
 /// How a sample is drawn and stored.
 #[derive(Clone, Copy, Debug, PartialEq)]

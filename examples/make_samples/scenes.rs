@@ -5,7 +5,7 @@ use std::f64::consts::{PI, TAU};
 
 use kurbo::{Affine, BezPath, Ellipse, Point, Shape};
 
-use crate::geometry::TrueCurve;
+use super::geometry::TrueCurve;
 
 /// A scene and the canvas it was laid out for.
 pub struct Scene {

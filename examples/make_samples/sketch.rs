@@ -6,8 +6,8 @@ use std::fmt::Write as _;
 use crawltrace::stages::svg::format_number;
 use kurbo::Point;
 
-use crate::geometry::TrueCurve;
-use crate::random::SplitMix64;
+use super::geometry::TrueCurve;
+use super::random::SplitMix64;
 
 /// Stroke lengths, in pen widths.
 const STROKE_LENGTH: (f64, f64) = (4.0, 15.0);

@@ -615,20 +615,12 @@ fn replace_inked_blocks(levels: &[f32], columns: usize, rows: usize) -> Vec<f32>
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::raster::test_random::SplitMix64;
     use image::Luma;
 
-    /// SplitMix64: a tiny seeded generator for reproducible noise.
-    fn split_mix(state: &mut u64) -> u64 {
-        *state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = *state;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
     /// Uniform noise in -amplitude..=amplitude.
-    fn noise(state: &mut u64, amplitude: i32) -> i32 {
-        (split_mix(state) % (2 * amplitude as u64 + 1)) as i32 - amplitude
+    fn noise(random: &mut SplitMix64, amplitude: i32) -> i32 {
+        (random.next_u64() % (2 * amplitude as u64 + 1)) as i32 - amplitude
     }
 
     /// A page of `reflectance` (paper 0.9, ink 0.15 where `ink` holds) under `illumination`, with
@@ -640,7 +632,7 @@ mod tests {
         illumination: impl Fn(u32, u32) -> f64,
         seed: u64,
     ) -> GrayImage {
-        let mut state = seed;
+        let mut random = SplitMix64::new(seed);
         GrayImage::from_fn(width, height, |x, y| {
             let reflectance = if ink.get(x as usize, y as usize) {
                 0.15
@@ -648,7 +640,7 @@ mod tests {
                 0.9
             };
             let value = 255.0 * reflectance * illumination(x, y);
-            Luma([(value.round() as i32 + noise(&mut state, 3)).clamp(0, 255) as u8])
+            Luma([(value.round() as i32 + noise(&mut random, 3)).clamp(0, 255) as u8])
         })
     }
 
@@ -770,11 +762,11 @@ mod tests {
 
     #[test]
     fn blank_pages_give_an_empty_mask_not_noise() {
-        let mut state = 4;
+        let mut random = SplitMix64::new(4);
         let flat = GrayImage::from_pixel(120, 90, Luma([235]));
-        let noisy = GrayImage::from_fn(120, 90, |_, _| Luma([(230 + noise(&mut state, 6)) as u8]));
+        let noisy = GrayImage::from_fn(120, 90, |_, _| Luma([(230 + noise(&mut random, 6)) as u8]));
         let shaded = GrayImage::from_fn(300, 90, |x, _| {
-            Luma([(240.0 - 0.5 * f64::from(x)) as u8 + noise(&mut state, 3).unsigned_abs() as u8])
+            Luma([(240.0 - 0.5 * f64::from(x)) as u8 + noise(&mut random, 3).unsigned_abs() as u8])
         });
         let black = GrayImage::from_pixel(40, 30, Luma([0]));
         for (name, gray) in [
@@ -824,14 +816,14 @@ mod tests {
             }
         }
         // Paper 230 and ink 40, with noise of ±6 levels.
-        let mut state = 8;
+        let mut random = SplitMix64::new(8);
         let gray = GrayImage::from_fn(width, height, |x, y| {
             let value = if ink.get(x as usize, y as usize) {
                 40
             } else {
                 230
             };
-            Luma([(value + noise(&mut state, 6)) as u8])
+            Luma([(value + noise(&mut random, 6)) as u8])
         });
         let mut histogram = [0u64; 256];
         for pixel in gray.pixels() {

@@ -312,6 +312,7 @@ fn float_to_8_bits(value: f32) -> u8 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::raster::test_random::SplitMix64;
     use image::{ImageBuffer, Luma, LumaA, Rgb, Rgba};
 
     /// A small deterministic drawing: dark strokes on light paper.
@@ -329,15 +330,6 @@ mod tests {
         let mut bytes = Cursor::new(Vec::new());
         image.write_to(&mut bytes, format).expect("encode fixture");
         bytes.into_inner()
-    }
-
-    /// SplitMix64: a tiny seeded generator for reproducible noise.
-    fn split_mix(state: &mut u64) -> u64 {
-        *state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = *state;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
     }
 
     #[test]
@@ -408,11 +400,12 @@ mod tests {
 
     #[test]
     fn damaged_and_random_bytes_are_errors_not_panics() {
-        let mut state = 7;
+        let mut random = SplitMix64::new(7);
         // Random bytes with no signature.
         for length in [1, 2, 17, 18, 100, 5000] {
-            let bytes: Vec<u8> = (0..length).map(|_| split_mix(&mut state) as u8).collect();
-            let _ = decode_image(&bytes);
+            let bytes: Vec<u8> = (0..length).map(|_| random.next_u64() as u8).collect();
+            let error = decode_image(&bytes).expect_err("random bytes are not an image");
+            assert_one_line(&error, &bytes);
         }
         // Valid signatures followed by garbage, and valid files with bytes flipped.
         let image =
@@ -436,17 +429,33 @@ mod tests {
             };
             let bytes = encode(&source, format);
             let mut garbage = bytes[..16.min(bytes.len())].to_vec();
-            garbage.extend((0..200).map(|_| split_mix(&mut state) as u8));
-            let _ = decode_image(&garbage);
+            garbage.extend((0..200).map(|_| random.next_u64() as u8));
+            let error = decode_image(&garbage).expect_err("a header and garbage is not an image");
+            assert_one_line(&error, &garbage);
             for _ in 0..150 {
                 let mut damaged = bytes.clone();
-                for _ in 0..1 + split_mix(&mut state) % 4 {
-                    let at = (split_mix(&mut state) % damaged.len() as u64) as usize;
-                    damaged[at] = split_mix(&mut state) as u8;
+                for _ in 0..1 + random.next_u64() % 4 {
+                    let at = (random.next_u64() % damaged.len() as u64) as usize;
+                    damaged[at] = random.next_u64() as u8;
                 }
-                let _ = decode_image(&damaged);
+                // A flipped pixel byte may still decode; whatever fails says so in one line.
+                match decode_image(&damaged) {
+                    Ok(decoded) => assert!(decoded.width() > 0 && decoded.height() > 0),
+                    Err(error) => assert_one_line(&error, &damaged),
+                }
             }
         }
+    }
+
+    /// A decode error is one non-empty line (it ends up after a file name on the console).
+    fn assert_one_line(error: &DecodeError, bytes: &[u8]) {
+        let message = error.to_string();
+        assert!(
+            !message.is_empty() && !message.contains('\n'),
+            "{message:?} for {} bytes starting {:02x?}",
+            bytes.len(),
+            &bytes[..bytes.len().min(16)]
+        );
     }
 
     #[test]

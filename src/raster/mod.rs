@@ -11,3 +11,9 @@ pub mod density;
 mod limits;
 pub mod radius;
 pub mod thin;
+
+/// The tests' seeded generator (`tests/support/random.rs`), for the unit tests' random shapes and
+/// noise: one copy for the whole repository.
+#[cfg(test)]
+#[path = "../../tests/support/random.rs"]
+mod test_random;

@@ -347,6 +347,7 @@ mod tests {
     use super::checks::*;
     use super::*;
     use crate::raster::clean::tests::draw_line;
+    use crate::raster::test_random::SplitMix64;
 
     /// Thins and checks the invariants, with both pictures in the failure message.
     fn thin_checked(mask: &Bitmap) -> Bitmap {
@@ -389,28 +390,6 @@ mod tests {
             if !changed {
                 return skeleton;
             }
-        }
-    }
-
-    /// SplitMix64: a tiny seeded generator for reproducible random shapes.
-    struct SplitMix64(u64);
-
-    impl SplitMix64 {
-        fn next(&mut self) -> u64 {
-            self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-            let mut z = self.0;
-            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-            z ^ (z >> 31)
-        }
-
-        /// Uniform in 0..bound.
-        fn below(&mut self, bound: usize) -> usize {
-            (self.next() % bound as u64) as usize
-        }
-
-        fn unit(&mut self) -> f64 {
-            (self.next() >> 11) as f64 / (1u64 << 53) as f64
         }
     }
 
@@ -626,7 +605,7 @@ mod tests {
 
     #[test]
     fn random_blobs_keep_their_topology_and_match_the_rescanning_reference() {
-        let mut random = SplitMix64(2024);
+        let mut random = SplitMix64::new(2024);
         for round in 0..300 {
             let (width, height) = (8 + random.below(56), 8 + random.below(56));
             let mask = random_blob(&mut random, width, height);
@@ -655,7 +634,7 @@ mod tests {
         use crate::raster::binarize::{binarize, BinarizeOptions, MethodUsed};
         use crate::raster::clean::{clean, estimate_stroke_width};
         use crate::raster::decode::{decode_image, to_gray};
-        let mut random = SplitMix64(5);
+        let mut random = SplitMix64::new(5);
         let (width, height) = (160u32, 120u32);
         let gray = image::GrayImage::from_fn(width, height, |x, y| {
             let (dx, dy) = (f64::from(x) + 0.5 - 80.0, f64::from(y) + 0.5 - 60.0);

@@ -57,7 +57,7 @@ const FUZZ_RENDER_PIXELS: u64 = 1_000_000;
 /// Case `index` of `kind` from `seed`: the same bytes on every run and machine.
 pub fn case(kind: Kind, seed: u64, index: u64) -> Case {
     let mut random =
-        SplitMix64(seed ^ ((kind as u64) << 56) ^ index.wrapping_mul(0x9E37_79B9_7F4A_7C15));
+        SplitMix64::new(seed ^ ((kind as u64) << 56) ^ index.wrapping_mul(0x9E37_79B9_7F4A_7C15));
     let bytes = match kind {
         Kind::Image => mutate_bytes(seed_image(&mut random), &mut random),
         Kind::Points => mutate_text(seed_points(&mut random), &mut random, &POINT_EDITS),
@@ -137,8 +137,8 @@ fn any_number(random: &mut SplitMix64) -> f64 {
         f64::MAX,
         0.49,
     ];
-    if random.below(2) == 0 {
-        SPECIAL[random.below(SPECIAL.len() as u64) as usize]
+    if random.below_u64(2) == 0 {
+        SPECIAL[random.below_u64(SPECIAL.len() as u64) as usize]
     } else {
         random.unit() * 20.0
     }
@@ -150,9 +150,9 @@ fn options_from(bytes: &[u8]) -> TraceOptions {
     for &byte in bytes {
         seed = seed.wrapping_mul(0x100_0000_01B3) ^ u64::from(byte);
     }
-    let mut random = SplitMix64(seed);
-    let maybe = |random: &mut SplitMix64| (random.below(3) > 0).then(|| any_number(random));
-    let method = match random.below(4) {
+    let mut random = SplitMix64::new(seed);
+    let maybe = |random: &mut SplitMix64| (random.below_u64(3) > 0).then(|| any_number(random));
+    let method = match random.below_u64(4) {
         0 => ThresholdMethod::Auto,
         1 => ThresholdMethod::Otsu,
         2 => ThresholdMethod::Adaptive,
@@ -161,30 +161,34 @@ fn options_from(bytes: &[u8]) -> TraceOptions {
     TraceOptions {
         binarize: BinarizeOptions {
             method,
-            invert: random.below(4) == 0,
+            invert: random.below_u64(4) == 0,
         },
         spacing: maybe(&mut random),
-        smooth: random.below(4) > 0,
+        smooth: random.below_u64(4) > 0,
         simplify: maybe(&mut random),
         stroke_width: maybe(&mut random),
-        method: if random.below(3) == 0 {
+        method: if random.below_u64(3) == 0 {
             Method::Points
         } else {
             Method::Strokes
         },
-        keep_stages: random.below(2) == 0,
-        max_pixels: [0, 1, 100, 10_000, u64::MAX][random.below(5) as usize],
+        keep_stages: random.below_u64(2) == 0,
+        max_pixels: [0, 1, 100, 10_000, u64::MAX][random.below_u64(5) as usize],
         ..TraceOptions::default()
     }
 }
 
 /// A small image in one of the formats the tracer reads.
 fn seed_image(random: &mut SplitMix64) -> Vec<u8> {
-    let side = 8 + random.below(88) as u32;
-    let picture = match random.below(3) {
+    let side = 8 + random.below_u64(88) as u32;
+    let picture = match random.below_u64(3) {
         0 => hostile::small_drawing(side),
         1 => hostile::noise_page(side, random.next_u64()),
-        _ => hostile::specks_page(side.max(4), 1 + random.below(20) as u32, random.next_u64()),
+        _ => hostile::specks_page(
+            side.max(4),
+            1 + random.below_u64(20) as u32,
+            random.next_u64(),
+        ),
     };
     const FORMATS: [ImageFormat; 9] = [
         ImageFormat::Png,
@@ -197,7 +201,7 @@ fn seed_image(random: &mut SplitMix64) -> Vec<u8> {
         ImageFormat::Qoi,
         ImageFormat::Farbfeld,
     ];
-    let format = FORMATS[random.below(FORMATS.len() as u64) as usize];
+    let format = FORMATS[random.below_u64(FORMATS.len() as u64) as usize];
     let gray = DynamicImage::ImageLuma8(picture);
     // The encoders that take no gray pixels get the same picture in the colour type they take.
     let image = match format {
@@ -225,18 +229,18 @@ const INTERESTING: [u32; 10] = [
 /// One to four edits of binary bytes: header fields, truncation, PNG chunk edits, splices and
 /// bit flips.
 fn mutate_bytes(mut bytes: Vec<u8>, random: &mut SplitMix64) -> Vec<u8> {
-    for _ in 0..1 + random.below(4) {
+    for _ in 0..1 + random.below_u64(4) {
         if bytes.is_empty() {
             break;
         }
         let len = bytes.len() as u64;
-        match random.below(6) {
+        match random.below_u64(6) {
             0 => {
                 // A header field: 1, 2 or 4 bytes among the first 64.
-                let at = random.below(len.min(64)) as usize;
-                let value = INTERESTING[random.below(INTERESTING.len() as u64) as usize];
-                let width = [1, 2, 4][random.below(3) as usize];
-                let field = if random.below(2) == 0 {
+                let at = random.below_u64(len.min(64)) as usize;
+                let value = INTERESTING[random.below_u64(INTERESTING.len() as u64) as usize];
+                let width = [1, 2, 4][random.below_u64(3) as usize];
+                let field = if random.below_u64(2) == 0 {
                     value.to_be_bytes()
                 } else {
                     value.to_le_bytes()
@@ -245,18 +249,18 @@ fn mutate_bytes(mut bytes: Vec<u8>, random: &mut SplitMix64) -> Vec<u8> {
                     bytes[at + k] = field[4 - width + k];
                 }
             }
-            1 => bytes.truncate(random.below(len) as usize),
+            1 => bytes.truncate(random.below_u64(len) as usize),
             2 => edit_png_chunks(&mut bytes, random),
             3 => {
                 // A splice: a range copied over another place.
-                let from = random.below(len) as usize;
-                let to = random.below(len) as usize;
-                let count = (random.below(64) as usize).min(bytes.len() - from.max(to));
+                let from = random.below_u64(len) as usize;
+                let to = random.below_u64(len) as usize;
+                let count = (random.below_u64(64) as usize).min(bytes.len() - from.max(to));
                 bytes.copy_within(from..from + count, to);
             }
             _ => {
-                let at = random.below(len) as usize;
-                bytes[at] ^= 1 << random.below(8);
+                let at = random.below_u64(len) as usize;
+                bytes[at] ^= 1 << random.below_u64(8);
             }
         }
     }
@@ -280,8 +284,8 @@ fn edit_png_chunks(bytes: &mut Vec<u8>, random: &mut SplitMix64) {
     if chunks.is_empty() {
         return;
     }
-    let chunk = chunks[random.below(chunks.len() as u64) as usize].clone();
-    match random.below(3) {
+    let chunk = chunks[random.below_u64(chunks.len() as u64) as usize].clone();
+    match random.below_u64(3) {
         0 => {
             bytes.drain(chunk);
         }
@@ -290,9 +294,9 @@ fn edit_png_chunks(bytes: &mut Vec<u8>, random: &mut SplitMix64) {
             bytes.splice(chunk.end..chunk.end, copy);
         }
         _ => {
-            let value = INTERESTING[random.below(INTERESTING.len() as u64) as usize];
+            let value = INTERESTING[random.below_u64(INTERESTING.len() as u64) as usize];
             bytes[chunk.start..chunk.start + 4].copy_from_slice(&value.to_be_bytes());
-            if random.below(2) == 0 && chunk.end <= bytes.len() {
+            if random.below_u64(2) == 0 && chunk.end <= bytes.len() {
                 let checksum = hostile::crc32(&bytes[chunk.start + 4..chunk.end - 4]);
                 bytes[chunk.end - 4..chunk.end].copy_from_slice(&checksum.to_be_bytes());
             }
@@ -302,11 +306,11 @@ fn edit_png_chunks(bytes: &mut Vec<u8>, random: &mut SplitMix64) {
 
 /// Point files: a curve, a cloud or a grid, in one of the separators the parser reads.
 fn seed_points(random: &mut SplitMix64) -> String {
-    let count = random.below(400) as usize;
-    let separator = [" ", ",", "\t", ", ", ";"][random.below(5) as usize];
-    let shape = random.below(3);
+    let count = random.below_u64(400) as usize;
+    let separator = [" ", ",", "\t", ", ", ";"][random.below_u64(5) as usize];
+    let shape = random.below_u64(3);
     let mut text = String::new();
-    if random.below(4) == 0 {
+    if random.below_u64(4) == 0 {
         text += "x y\n";
     }
     for k in 0..count {
@@ -350,15 +354,15 @@ const POINT_EDITS: Edits = Edits {
 /// SVG documents: a hostile one, or a drawing with the elements renderers find hard.
 fn seed_svg(random: &mut SplitMix64) -> String {
     let hostile = hostile::hostile_svgs();
-    if random.below(3) == 0 {
-        return hostile[random.below(hostile.len() as u64) as usize]
+    if random.below_u64(3) == 0 {
+        return hostile[random.below_u64(hostile.len() as u64) as usize]
             .1
             .clone();
     }
-    let side = 20 + random.below(300);
+    let side = 20 + random.below_u64(300);
     let mut body = String::new();
-    for _ in 0..1 + random.below(6) {
-        body += SVG_ELEMENTS[random.below(SVG_ELEMENTS.len() as u64) as usize];
+    for _ in 0..1 + random.below_u64(6) {
+        body += SVG_ELEMENTS[random.below_u64(SVG_ELEMENTS.len() as u64) as usize];
     }
     format!(
         r#"<svg xmlns="http://www.w3.org/2000/svg" xmlns:xlink="http://www.w3.org/1999/xlink" width="{side}" height="{side}">{body}</svg>"#
@@ -412,15 +416,15 @@ struct Edits {
 /// element repeated; and now and then the text cut or a byte flipped.
 fn mutate_text(text: String, random: &mut SplitMix64, edits: &Edits) -> Vec<u8> {
     let mut bytes = text.into_bytes();
-    for _ in 0..1 + random.below(4) {
+    for _ in 0..1 + random.below_u64(4) {
         if bytes.is_empty() {
             break;
         }
-        let at = random.below(bytes.len() as u64) as usize;
+        let at = random.below_u64(bytes.len() as u64) as usize;
         let pick = |random: &mut SplitMix64, list: &[&'static str]| {
-            list[random.below(list.len() as u64) as usize].as_bytes()
+            list[random.below_u64(list.len() as u64) as usize].as_bytes()
         };
-        match random.below(10) {
+        match random.below_u64(10) {
             0..=3 => {
                 let Some(start) = (at..bytes.len()).find(|&k| bytes[k].is_ascii_digit()) else {
                     continue;
@@ -444,10 +448,10 @@ fn mutate_text(text: String, random: &mut SplitMix64, edits: &Edits) -> Vec<u8> 
                 &mut bytes,
                 at,
                 edits.boundary,
-                1 + random.below(64) as usize,
+                1 + random.below_u64(64) as usize,
             ),
             8 => bytes.truncate(at),
-            _ => bytes[at] ^= 1 << random.below(8),
+            _ => bytes[at] ^= 1 << random.below_u64(8),
         }
     }
     bytes

@@ -6,33 +6,13 @@
 // Each user takes what it needs.
 #![allow(dead_code)]
 
+#[path = "../support/random.rs"]
+mod random;
+
 use std::io::Cursor;
 
 use image::{DynamicImage, GrayImage, ImageFormat, Luma};
-
-/// SplitMix64: a tiny seeded generator, so that every hostile input is the same on every run.
-pub struct SplitMix64(pub u64);
-
-impl SplitMix64 {
-    /// The next 64 random bits.
-    pub fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    /// A number in `0..bound` (`bound` > 0).
-    pub fn below(&mut self, bound: u64) -> u64 {
-        self.next_u64() % bound
-    }
-
-    /// A number in `[0, 1)`.
-    pub fn unit(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
+pub use random::SplitMix64;
 
 /// Encodes `image` in `format`.
 pub fn encode(image: &DynamicImage, format: ImageFormat) -> Vec<u8> {
@@ -47,11 +27,11 @@ pub fn encode(image: &DynamicImage, format: ImageFormat) -> Vec<u8> {
 /// `kurbo::simplify_bezpath` never returned (kurbo issue #602).
 pub fn specks_page(side: u32, percent: u32, seed: u64) -> GrayImage {
     let mut page = GrayImage::from_pixel(side, side, Luma([255]));
-    let mut random = SplitMix64(seed);
+    let mut random = SplitMix64::new(seed);
     let specks = u64::from(side) * u64::from(side) * u64::from(percent) / 100 / 4;
     for _ in 0..specks {
-        let x = random.below(u64::from(side - 2)) as u32;
-        let y = random.below(u64::from(side - 2)) as u32;
+        let x = random.below_u64(u64::from(side - 2)) as u32;
+        let y = random.below_u64(u64::from(side - 2)) as u32;
         for (dx, dy) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
             page.put_pixel(x + dx, y + dy, Luma([0]));
         }
@@ -61,9 +41,9 @@ pub fn specks_page(side: u32, percent: u32, seed: u64) -> GrayImage {
 
 /// A `side`² page of black and white pixels at random, half of each.
 pub fn noise_page(side: u32, seed: u64) -> GrayImage {
-    let mut random = SplitMix64(seed);
+    let mut random = SplitMix64::new(seed);
     GrayImage::from_fn(side, side, |_, _| {
-        Luma([if random.below(2) == 0 { 0 } else { 255 }])
+        Luma([if random.below_u64(2) == 0 { 0 } else { 255 }])
     })
 }
 
@@ -219,7 +199,7 @@ pub fn nested_uses(levels: usize) -> String {
 
 /// Point files: many points on a tiny grid, huge coordinates, long lines without newlines.
 pub fn hostile_point_files() -> Vec<(&'static str, Vec<u8>)> {
-    let mut random = SplitMix64(13);
+    let mut random = SplitMix64::new(13);
     let noise: String = (0..20_000)
         .map(|_| format!("{} {}\n", random.unit() * 100.0, random.unit() * 100.0))
         .collect();

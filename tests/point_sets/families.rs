@@ -6,13 +6,13 @@ use std::f64::consts::{PI, TAU};
 use super::geometry::{
     arc, circle, distance, ellipse, local_feature_sizes, parametric, polygon, Path, Xy,
 };
-use super::{Instance, Random, Scene};
+use super::{Instance, Scene, SplitMix64};
 
 /// A family: its name in the table, and how to make instance `k` of it.
 pub struct Family {
     pub name: &'static str,
     pub what: &'static str,
-    pub make: fn(&mut Random, usize) -> Instance,
+    pub make: fn(&mut SplitMix64, usize) -> Instance,
 }
 
 /// Every family, in table order.
@@ -97,7 +97,7 @@ const STRAY_CIRCLE_RADIUS: f64 = 95.0 / TAU;
 
 /// A circle of 95 samples with `percent` % as many uniform strays, at least 4 spacings off it,
 /// in its bounding box grown by 10.
-pub fn circle_with_strays(random: &mut Random, percent: usize) -> Scene {
+pub fn circle_with_strays(random: &mut SplitMix64, percent: usize) -> Scene {
     let radius = STRAY_CIRCLE_RADIUS;
     let samples = circle((0.0, 0.0), radius).jittered_samples(random, 1.0, JITTER);
     let count = (95.0 * percent as f64 / 100.0).round() as usize;
@@ -113,13 +113,13 @@ pub fn circle_with_strays(random: &mut Random, percent: usize) -> Scene {
 }
 
 /// A point at `distance` from the centre of the strays' circle, in a random direction.
-fn around_circle(random: &mut Random, distance: f64) -> Xy {
+fn around_circle(random: &mut SplitMix64, distance: f64) -> Xy {
     let direction = random.range(0.0, TAU);
     (distance * direction.cos(), distance * direction.sin())
 }
 
 /// The circle of [`circle_with_strays`] and two strays 0.6 apart, 5 spacings outside it.
-pub fn stray_pair_outside_circle(random: &mut Random) -> Scene {
+pub fn stray_pair_outside_circle(random: &mut SplitMix64) -> Scene {
     let samples = circle((0.0, 0.0), STRAY_CIRCLE_RADIUS).jittered_samples(random, 1.0, JITTER);
     let middle = around_circle(random, STRAY_CIRCLE_RADIUS + 5.0);
     let turn = random.range(0.0, TAU);
@@ -132,7 +132,7 @@ pub fn stray_pair_outside_circle(random: &mut Random) -> Scene {
 }
 
 /// The circle and three strays in a row, 3 apart, 20 spacings outside it.
-pub fn stray_row_far_from_circle(random: &mut Random) -> Scene {
+pub fn stray_row_far_from_circle(random: &mut SplitMix64) -> Scene {
     let samples = circle((0.0, 0.0), STRAY_CIRCLE_RADIUS).jittered_samples(random, 1.0, JITTER);
     let middle = around_circle(random, STRAY_CIRCLE_RADIUS + 20.0);
     let turn = random.range(0.0, TAU);
@@ -147,7 +147,7 @@ pub fn stray_row_far_from_circle(random: &mut Random) -> Scene {
 
 /// An open line of 30 spacings with a stray 6 to 7 spacings beyond each end (within 45° of the
 /// line's direction).
-pub fn line_with_strays_beyond(random: &mut Random) -> Scene {
+pub fn line_with_strays_beyond(random: &mut SplitMix64) -> Scene {
     let line = polygon(&[(0.0, 0.0), (30.0, 0.0)], false);
     let samples = line.jittered_samples(random, 1.0, JITTER);
     let mut strays = Vec::new();
@@ -159,13 +159,13 @@ pub fn line_with_strays_beyond(random: &mut Random) -> Scene {
     Scene::default().curve(samples, false).strays(strays)
 }
 
-fn outliers(random: &mut Random, k: usize) -> Instance {
+fn outliers(random: &mut SplitMix64, k: usize) -> Instance {
     let percent = [5, 10, 20][k % 3];
     let scene = circle_with_strays(random, percent);
     Instance::new("outliers", format!("{percent}% strays"), scene, random)
 }
 
-fn stray_cases(random: &mut Random, k: usize) -> Instance {
+fn stray_cases(random: &mut SplitMix64, k: usize) -> Instance {
     let (label, scene) = match k % 3 {
         0 => (
             "two strays 0.6 apart, 5 outside a circle",
@@ -211,7 +211,7 @@ pub fn sector_samples(degrees: f64, apex_on_sample: bool) -> Scene {
     Scene::default().curve(samples, true)
 }
 
-fn sectors(random: &mut Random, k: usize) -> Instance {
+fn sectors(random: &mut SplitMix64, k: usize) -> Instance {
     let degrees = 15 + 5 * ((k / 2) % 14);
     let on_sample = k % 2 == 0;
     let label = format!(
@@ -240,7 +240,7 @@ fn interior_angles(corners: &[Xy]) -> Vec<f64> {
         .collect()
 }
 
-fn polygons(random: &mut Random, _k: usize) -> Instance {
+fn polygons(random: &mut SplitMix64, _k: usize) -> Instance {
     loop {
         let n = 3 + random.below(6);
         let mut angles: Vec<f64> = (0..n).map(|_| random.range(0.0, TAU)).collect();
@@ -291,7 +291,7 @@ fn segment_distance(p: Xy, a: Xy, b: Xy) -> f64 {
 
 /// Two parallel open lines of 30 spacings, 5 apart, the second 3 % denser and shifted along
 /// by up to 10.
-pub fn parallel_lines(random: &mut Random) -> Scene {
+pub fn parallel_lines(random: &mut SplitMix64) -> Scene {
     let first = polygon(&[(0.0, 0.0), (30.0, 0.0)], false);
     let shift = random.range(-10.0, 10.0);
     let second = polygon(&[(shift, 5.0), (shift + 30.0, 5.0)], false);
@@ -302,7 +302,7 @@ pub fn parallel_lines(random: &mut Random) -> Scene {
 
 /// A circle of radius 12 and an open 120° arc of radius 20 sampled `density` times as densely,
 /// whose nearest end is `gap` from the circle, heading off at a random angle.
-pub fn circle_and_arc(random: &mut Random, gap: f64, density: f64) -> Scene {
+pub fn circle_and_arc(random: &mut SplitMix64, gap: f64, density: f64) -> Scene {
     let circle_samples = circle((0.0, 0.0), 12.0).jittered_samples(random, 1.0, JITTER);
     loop {
         // Kept only when the first end is the arc's nearest point to the circle.
@@ -328,7 +328,7 @@ pub fn circle_and_arc(random: &mut Random, gap: f64, density: f64) -> Scene {
     }
 }
 
-fn open_ends(random: &mut Random, k: usize) -> Instance {
+fn open_ends(random: &mut SplitMix64, k: usize) -> Instance {
     if k % 3 == 2 {
         let label = "two parallel lines 5 apart, one 3 % denser".to_string();
         let scene = parallel_lines(random);
@@ -349,19 +349,19 @@ fn open_ends(random: &mut Random, k: usize) -> Instance {
 }
 
 /// A closed 30 × `gap` slot (a thin rectangle), spacing 1.
-pub fn slot(random: &mut Random, gap: f64) -> Scene {
+pub fn slot(random: &mut SplitMix64, gap: f64) -> Scene {
     let slot = polygon(&[(0.0, 0.0), (30.0, 0.0), (30.0, gap), (0.0, gap)], true);
     Scene::default().curve(slot.jittered_samples(random, 1.0, 0.1), true)
 }
 
 /// Two circles of radius 10, `gap` apart, spacing 1.
-pub fn two_circles(random: &mut Random, gap: f64) -> Scene {
+pub fn two_circles(random: &mut SplitMix64, gap: f64) -> Scene {
     let a = circle((0.0, 0.0), 10.0).jittered_samples(random, 1.0, 0.1);
     let b = circle((20.0 + gap, 0.0), 10.0).jittered_samples(random, 1.0, 0.1);
     Scene::default().curve(a, true).curve(b, true)
 }
 
-fn thin_scene(random: &mut Random, k: usize, gap: f64) -> (String, Scene) {
+fn thin_scene(random: &mut SplitMix64, k: usize, gap: f64) -> (String, Scene) {
     if k % 2 == 0 {
         (format!("30 × {gap:.2} slot"), slot(random, gap))
     } else {
@@ -372,13 +372,13 @@ fn thin_scene(random: &mut Random, k: usize, gap: f64) -> (String, Scene) {
     }
 }
 
-fn thin(random: &mut Random, k: usize) -> Instance {
+fn thin(random: &mut SplitMix64, k: usize) -> Instance {
     let gap = random.range(0.75, 1.5);
     let (label, scene) = thin_scene(random, k, gap);
     Instance::new("thin", label, scene, random)
 }
 
-fn thin_narrow(random: &mut Random, k: usize) -> Instance {
+fn thin_narrow(random: &mut SplitMix64, k: usize) -> Instance {
     let gap = random.range(0.5, 0.75);
     let (label, scene) = thin_scene(random, k, gap);
     Instance::new("thin-narrow", label, scene, random)
@@ -387,7 +387,7 @@ fn thin_narrow(random: &mut Random, k: usize) -> Instance {
 /// A random smooth closed shape of size about 1 around the origin: an ellipse (aspect 1.5-8),
 /// a blob with a few harmonics, or a peanut with a narrow waist; as a polar or parametric
 /// function of t ∈ [0, 2π).
-fn smooth_shape(random: &mut Random) -> Box<dyn Fn(f64) -> Xy> {
+fn smooth_shape(random: &mut SplitMix64) -> Box<dyn Fn(f64) -> Xy> {
     let turn = random.range(0.0, TAU);
     let (c, s) = (turn.cos(), turn.sin());
     let rotate = move |(x, y): Xy| (c * x - s * y, s * x + c * y);
@@ -436,7 +436,7 @@ fn placed(shape: Box<dyn Fn(f64) -> Xy>, centre: Xy, scale: f64) -> impl Fn(f64)
 const EPSILONS: [f64; 3] = [0.2, 0.33, 0.47];
 
 /// Samples each path at `epsilon` × its local feature size (measured on all paths together).
-fn feature_size_samples(paths: &[Path], epsilon: f64, random: &mut Random) -> Vec<Vec<Xy>> {
+fn feature_size_samples(paths: &[Path], epsilon: f64, random: &mut SplitMix64) -> Vec<Vec<Xy>> {
     let references: Vec<&Path> = paths.iter().collect();
     let sizes = local_feature_sizes(&references);
     paths
@@ -451,7 +451,7 @@ fn feature_size_samples(paths: &[Path], epsilon: f64, random: &mut Random) -> Ve
 
 /// `count` random smooth closed curves in a row, each 10-30 across, 1-15 apart (so that they
 /// shape each other's local feature size), sampled at `epsilon` × local feature size.
-pub fn feature_size_closed(random: &mut Random, epsilon: f64, count: usize) -> Scene {
+pub fn feature_size_closed(random: &mut SplitMix64, epsilon: f64, count: usize) -> Scene {
     let mut paths = Vec::new();
     let mut cursor = 0.0;
     for _ in 0..count {
@@ -477,7 +477,7 @@ pub fn feature_size_closed(random: &mut Random, epsilon: f64, count: usize) -> S
 
 /// A random part (20-75 %) of a random smooth closed curve, sampled at `epsilon` × its local
 /// feature size (as an open curve: the missing part does not count).
-pub fn feature_size_open(random: &mut Random, epsilon: f64) -> Scene {
+pub fn feature_size_open(random: &mut SplitMix64, epsilon: f64) -> Scene {
     let scale = random.range(10.0, 30.0);
     let shape = placed(smooth_shape(random), (0.0, 0.0), scale);
     let start = random.range(0.0, TAU);
@@ -487,7 +487,7 @@ pub fn feature_size_open(random: &mut Random, epsilon: f64) -> Scene {
     Scene::default().curve(samples, false)
 }
 
-fn lfs_closed(random: &mut Random, k: usize) -> Instance {
+fn lfs_closed(random: &mut SplitMix64, k: usize) -> Instance {
     let epsilon = EPSILONS[k % 3];
     let count = 1 + random.below(3);
     let scene = feature_size_closed(random, epsilon, count);
@@ -495,13 +495,13 @@ fn lfs_closed(random: &mut Random, k: usize) -> Instance {
     Instance::new("lfs-closed", label, scene, random)
 }
 
-fn lfs_open(random: &mut Random, k: usize) -> Instance {
+fn lfs_open(random: &mut SplitMix64, k: usize) -> Instance {
     let epsilon = EPSILONS[k % 3];
     let scene = feature_size_open(random, epsilon);
     Instance::new("lfs-open", format!("ε = {epsilon}"), scene, random)
 }
 
-fn non_uniform(random: &mut Random, _k: usize) -> Instance {
+fn non_uniform(random: &mut SplitMix64, _k: usize) -> Instance {
     let scale = random.range(15.0, 40.0);
     let path = parametric(
         placed(smooth_shape(random), (0.0, 0.0), scale),
@@ -529,7 +529,7 @@ fn non_uniform(random: &mut Random, _k: usize) -> Instance {
     )
 }
 
-fn noise(random: &mut Random, k: usize) -> Instance {
+fn noise(random: &mut SplitMix64, k: usize) -> Instance {
     let sigma = [0.05, 0.1, 0.15][k % 3];
     loop {
         let scale = random.range(12.0, 30.0);
@@ -547,7 +547,7 @@ fn noise(random: &mut Random, k: usize) -> Instance {
         let samples: Vec<Xy> = path
             .jittered_samples(random, 1.0, 0.1)
             .into_iter()
-            .map(|(x, y)| (x + sigma * random.normal(), y + sigma * random.normal()))
+            .map(|(x, y)| (x + sigma * random.gaussian(), y + sigma * random.gaussian()))
             .collect();
         return Instance::new(
             "noise",
@@ -573,7 +573,7 @@ fn apart(paths: &[Path], clearance: f64) -> bool {
     true
 }
 
-fn holes(random: &mut Random, _k: usize) -> Instance {
+fn holes(random: &mut SplitMix64, _k: usize) -> Instance {
     loop {
         let hosts = 1 + random.below(3);
         let mut paths = Vec::new();
@@ -655,7 +655,7 @@ fn folds(path: &Path) -> bool {
     false
 }
 
-fn silhouettes(random: &mut Random, k: usize) -> Instance {
+fn silhouettes(random: &mut SplitMix64, k: usize) -> Instance {
     loop {
         let instance = silhouette(random, k);
         if let Some(instance) = instance {
@@ -664,7 +664,7 @@ fn silhouettes(random: &mut Random, k: usize) -> Instance {
     }
 }
 
-fn silhouette(random: &mut Random, _k: usize) -> Option<Instance> {
+fn silhouette(random: &mut SplitMix64, _k: usize) -> Option<Instance> {
     // An outline r(θ) around the body's centre: an oval body; legs and a tail as plateaus with
     // steep (radial) sides; a round head with two pointed ears as spikes. Parts never fold over,
     // and the gaps between legs stay at least 2.5 spacings wide.
@@ -819,7 +819,7 @@ fn glyph(letter: char, stroke: f64, origin: Xy) -> Vec<Path> {
     }
 }
 
-fn letters(random: &mut Random, _k: usize) -> Instance {
+fn letters(random: &mut SplitMix64, _k: usize) -> Instance {
     const ALPHABET: [char; 8] = ['L', 'T', 'E', 'H', 'O', 'P', 'D', 'I'];
     let stroke = random.range(2.5, 4.0);
     let count = 3 + random.below(3);

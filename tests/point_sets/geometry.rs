@@ -88,7 +88,7 @@ impl Path {
     /// (below 0.5, so the order along the curve is kept).
     pub fn jittered_samples(
         &self,
-        random: &mut super::Random,
+        random: &mut super::SplitMix64,
         spacing: f64,
         jitter: f64,
     ) -> Vec<Xy> {

@@ -10,6 +10,8 @@
 
 pub mod families;
 pub mod geometry;
+#[path = "../support/random.rs"]
+mod random;
 
 use std::collections::BTreeSet;
 
@@ -17,52 +19,7 @@ use crawltrace::Point;
 use crawltrace::Reconstruction;
 
 use geometry::Xy;
-
-/// SplitMix64 (Steele, Lea & Flood 2014): a tiny seeded generator, the same on every machine.
-#[derive(Clone, Debug)]
-pub struct Random(u64);
-
-impl Random {
-    pub fn new(seed: u64) -> Self {
-        Self(seed)
-    }
-
-    pub fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in [0, 1).
-    pub fn unit(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    /// Uniform in [low, high).
-    pub fn range(&mut self, low: f64, high: f64) -> f64 {
-        low + (high - low) * self.unit()
-    }
-
-    /// Uniform in 0..count.
-    pub fn below(&mut self, count: usize) -> usize {
-        (self.next_u64() % count as u64) as usize
-    }
-
-    /// Standard normal (Box–Muller).
-    pub fn normal(&mut self) -> f64 {
-        let u = 1.0 - self.unit();
-        let v = self.unit();
-        (-2.0 * u.ln()).sqrt() * (std::f64::consts::TAU * v).cos()
-    }
-
-    pub fn shuffle<T>(&mut self, items: &mut [T]) {
-        for i in (1..items.len()).rev() {
-            items.swap(i, self.below(i + 1));
-        }
-    }
-}
+pub use random::SplitMix64;
 
 /// A scene before it becomes a point set: true curves as samples in order, and stray points.
 #[derive(Clone, Debug, Default)]
@@ -98,7 +55,7 @@ impl Instance {
     /// Turns `scene` into a point set: a random rotation, scale (a power of two between 1/8 and
     /// 8, so nothing depends on units) and shift, then the points shuffled so that input order
     /// carries no hint of the curves.
-    pub fn new(family: &'static str, label: String, scene: Scene, random: &mut Random) -> Self {
+    pub fn new(family: &'static str, label: String, scene: Scene, random: &mut SplitMix64) -> Self {
         let turn = random.range(0.0, std::f64::consts::TAU);
         let scale = 2f64.powi(random.below(7) as i32 - 3);
         let shift = (random.range(-500.0, 500.0), random.range(-500.0, 500.0));

@@ -1,6 +1,7 @@
 //! Shared helpers for the integration tests: curves out of any SVG, ground-truth matching by
 //! Hausdorff distance, the benchmark's truth files and scoring (`bench`), tolerant image
-//! comparison with a visual diff in `tests/diffs/`, and running the binary ([`cli`]).
+//! comparison with a visual diff in `tests/diffs/`, running the binary ([`cli`]) and the seeded
+//! generator ([`random`]).
 // Each test binary includes this module and uses only part of it.
 #![allow(dead_code, unused_imports)]
 
@@ -9,6 +10,7 @@ pub mod cli;
 mod hausdorff;
 mod images;
 mod matching;
+pub mod random;
 
 use crawltrace::Point;
 use kurbo::ParamCurve;

@@ -7,9 +7,7 @@
 //! The deadlines catch hangs (the cases ran for minutes), they are not speed targets;
 //! speed is measured by `cargo bench`.
 
-#![cfg(unix)]
-
-mod hostile;
+use crate::hostile;
 
 use std::collections::BTreeMap;
 use std::fs;

@@ -2,7 +2,7 @@
 //! true curve of its `<name>.truth.svg` must come out as exactly one output path, open or closed as
 //! it should be, within pen width / 2 + 2 px (symmetric Hausdorff distance), with no other paths.
 
-mod support;
+use crate::support;
 
 use std::path::{Path, PathBuf};
 

@@ -7,6 +7,7 @@
 //! distances to each other are measured on a fine polyline, and the sampling density is chosen from
 //! those measurements.
 
+use crate::support::random::SplitMix64;
 use std::collections::{BTreeMap, BTreeSet};
 use std::f64::consts::TAU;
 
@@ -18,44 +19,6 @@ type Method = fn(&[Point]) -> Result<Reconstruction, ReconstructError>;
 
 /// Both methods, named for failure messages. Every property below holds for both.
 const METHODS: [(&str, Method); 2] = [("paper", reconstruct), ("robust", reconstruct_robust)];
-
-/// SplitMix64 (Steele, Lea & Flood 2014): tiny, fast, and good enough to draw test shapes.
-struct SplitMix64(u64);
-
-impl SplitMix64 {
-    fn new(seed: u64) -> Self {
-        Self(seed)
-    }
-
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in [0, 1).
-    fn unit(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    /// Uniform in [low, high).
-    fn range(&mut self, low: f64, high: f64) -> f64 {
-        low + (high - low) * self.unit()
-    }
-
-    /// Uniform in 0..count.
-    fn below(&mut self, count: usize) -> usize {
-        (self.next_u64() % count as u64) as usize
-    }
-
-    fn shuffle<T>(&mut self, items: &mut [T]) {
-        for i in (1..items.len()).rev() {
-            items.swap(i, self.below(i + 1));
-        }
-    }
-}
 
 /// A smooth closed curve γ(t), t ∈ [0, 2π), with a fine polyline of it for measurements.
 struct ClosedCurve {

@@ -4,8 +4,8 @@
 //! the completion scripts and manual pages. The DXF itself is read back with ezdxf in
 //! `python/tests/test_dxf.py`.
 
-mod hostile;
-mod support;
+use crate::hostile;
+use crate::support;
 
 use std::io::Cursor;
 use std::process::{Command, Output};

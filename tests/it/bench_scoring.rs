@@ -1,7 +1,7 @@
 //! The benchmark scorer's judgement (`tests/support/bench.rs`) on hand-made traces: a perfect
 //! trace passes, and each kind of failure is named for what it is.
 
-mod support;
+use crate::support;
 
 use crawltrace::Point;
 use support::bench::{load_bench_truth, score_drawing, BenchTruth, Failure, TrueDot};

@@ -2,7 +2,7 @@
 //! reference PNG in `tests/golden/`. See `tests/README.md`; `BLESS=1 cargo test` rewrites the
 //! references.
 
-mod support;
+use crate::support;
 
 use std::path::{Path, PathBuf};
 

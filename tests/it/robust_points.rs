@@ -4,7 +4,7 @@
 //! feature size. Every set is turned, scaled by a power of two, shifted and shuffled before it is
 //! reconstructed, and every test expects exactly the true edges and outliers.
 
-mod point_sets;
+use crate::point_sets;
 
 use crawltrace::reconstruct_robust as reconstruct;
 use point_sets::families::{
@@ -12,12 +12,16 @@ use point_sets::families::{
     line_with_strays_beyond, parallel_lines, sector_samples, slot, stray_pair_outside_circle,
     stray_row_far_from_circle, two_circles,
 };
-use point_sets::{Instance, Random, Scene};
+use point_sets::{Instance, Scene, SplitMix64};
 
 /// Reconstructs the scene `make` builds from `seed`, and returns why it is not exact, if it is
 /// not.
-fn mismatch(label: String, seed: u64, make: impl FnOnce(&mut Random) -> Scene) -> Option<String> {
-    let mut random = Random::new(seed);
+fn mismatch(
+    label: String,
+    seed: u64,
+    make: impl FnOnce(&mut SplitMix64) -> Scene,
+) -> Option<String> {
+    let mut random = SplitMix64::new(seed);
     let scene = make(&mut random);
     let instance = Instance::new("test", format!("{label}, seed {seed}"), scene, &mut random);
     let result = reconstruct(&instance.points).expect("generated points are valid");

@@ -3,35 +3,13 @@
 //! many sampled curves. None may panic; each must keep the structural invariants, and those with
 //! a known answer must give it. Speed is measured in `benches/reconstruct.rs`, not here.
 
+use crate::support::random::SplitMix64;
 use std::collections::BTreeSet;
 use std::f64::consts::TAU;
 
 use crawltrace::{reconstruct, Point, Reconstruction};
 
 const COUNT: usize = 100_000;
-
-/// SplitMix64, for shuffling and jitter.
-struct SplitMix64(u64);
-
-impl SplitMix64 {
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    fn unit(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    fn shuffle<T>(&mut self, items: &mut [T]) {
-        for i in (1..items.len()).rev() {
-            items.swap(i, (self.next_u64() % (i as u64 + 1)) as usize);
-        }
-    }
-}
 
 /// Every point is on at most one curve, once; curves have at least three points (four if
 /// closed); curves, outliers and merged duplicates together account for every input point.
@@ -69,7 +47,7 @@ fn check_structure(what: &str, count: usize, result: &Reconstruction) {
 
 #[test]
 fn evenly_spaced_collinear_points_make_one_open_curve_in_order() {
-    let mut random = SplitMix64(1);
+    let mut random = SplitMix64::new(1);
     let mut steps: Vec<usize> = (0..COUNT).collect();
     random.shuffle(&mut steps);
     let points: Vec<Point> = steps
@@ -91,14 +69,14 @@ fn a_lattice_where_everything_is_cocircular() {
     let mut points: Vec<Point> = (0..side * side)
         .map(|k| Point::new((k % side) as f64, (k / side) as f64))
         .collect();
-    SplitMix64(2).shuffle(&mut points);
+    SplitMix64::new(2).shuffle(&mut points);
     let result = reconstruct(&points).unwrap();
     check_structure("lattice", points.len(), &result);
 }
 
 #[test]
 fn mostly_duplicates() {
-    let mut random = SplitMix64(3);
+    let mut random = SplitMix64::new(3);
     let points: Vec<Point> = (0..COUNT)
         .map(|_| {
             let k = random.next_u64() % 1000;
@@ -116,7 +94,7 @@ fn mostly_duplicates() {
 
 #[test]
 fn a_cluster_far_smaller_than_its_coordinates() {
-    let mut random = SplitMix64(4);
+    let mut random = SplitMix64::new(4);
     let points: Vec<Point> = (0..COUNT)
         .map(|_| Point::new(1e6 + random.unit() * 1e-4, -1e6 + random.unit() * 1e-4))
         .collect();
@@ -127,7 +105,7 @@ fn a_cluster_far_smaller_than_its_coordinates() {
 #[test]
 fn uniform_noise_at_extreme_scales() {
     for scale in [1e-30, 1.0, 1e55] {
-        let mut random = SplitMix64(5);
+        let mut random = SplitMix64::new(5);
         let points: Vec<Point> = (0..COUNT / 4)
             .map(|_| Point::new(random.unit() * scale, random.unit() * scale))
             .collect();
@@ -140,7 +118,7 @@ fn uniform_noise_at_extreme_scales() {
 fn many_sampled_circles_come_back_as_closed_curves() {
     // Circles of 100 to 400 points, evenly spaced up to ±15 % jitter along the arc, each in its
     // own cell: dense, well-separated samples the paper's theorem covers.
-    let mut random = SplitMix64(6);
+    let mut random = SplitMix64::new(6);
     let mut points = Vec::with_capacity(COUNT);
     let mut circles = Vec::new();
     let columns = 25;
@@ -184,7 +162,7 @@ fn many_sampled_circles_come_back_as_closed_curves() {
 fn a_page_of_specks_is_traced_not_hung() {
     let (width, height) = (1000u32, 1000u32);
     let mut page = image::GrayImage::from_pixel(width, height, image::Luma([255]));
-    let mut random = SplitMix64(1);
+    let mut random = SplitMix64::new(1);
     let specks = (width * height) as usize * 5 / 100 / 4;
     for _ in 0..specks {
         let x = (random.next_u64() % u64::from(width - 2)) as u32;

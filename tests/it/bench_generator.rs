@@ -4,28 +4,28 @@
 
 #![allow(dead_code)]
 
-#[path = "../examples/make_bench/drawing.rs"]
+#[path = "../../examples/make_bench/drawing.rs"]
 mod drawing;
-#[path = "../examples/make_bench/families.rs"]
+#[path = "../../examples/make_bench/families.rs"]
 mod families;
-#[path = "../examples/make_bench/figure.rs"]
+#[path = "../../examples/make_bench/figure.rs"]
 mod figure;
-#[path = "../examples/make_samples/geometry.rs"]
+#[path = "../../examples/make_samples/geometry.rs"]
 mod geometry;
-#[path = "../examples/make_bench/objects.rs"]
+#[path = "../../examples/make_bench/objects.rs"]
 mod objects;
-#[path = "../examples/make_samples/paper.rs"]
+#[path = "../../examples/make_samples/paper.rs"]
 mod paper;
-#[path = "../examples/make_bench/pen.rs"]
+#[path = "../../examples/make_bench/pen.rs"]
 mod pen;
-#[path = "../examples/make_samples/random.rs"]
+#[path = "../../examples/make_samples/random.rs"]
 mod random;
-#[path = "../examples/make_bench/shapes.rs"]
+#[path = "../../examples/make_bench/shapes.rs"]
 mod shapes;
-#[path = "../examples/make_samples/sketch.rs"]
+#[path = "../../examples/make_samples/sketch.rs"]
 mod sketch;
-mod support;
-#[path = "../examples/make_bench/touching.rs"]
+use crate::support;
+#[path = "../../examples/make_bench/touching.rs"]
 mod touching;
 
 use crawltrace::render_svg;

@@ -2,7 +2,7 @@
 //! size, nearly all of the sample's ink lies near a true curve, and every true curve has ink
 //! along most of its length.
 
-mod support;
+use crate::support;
 
 use std::path::{Path, PathBuf};
 

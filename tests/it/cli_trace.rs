@@ -2,7 +2,7 @@
 //! dashed SVG strokes) in a temporary folder: formats, outputs, errors, determinism, `--debug`,
 //! `render`.
 
-mod support;
+use crate::support;
 
 use std::path::{Path, PathBuf};
 

@@ -1,7 +1,7 @@
 //! Self-tests of the helpers in `tests/support`: curve loading, ground-truth matching (each sample's
 //! truth matches itself, and perturbed copies fail for the right reason) and image comparison.
 
-mod support;
+use crate::support;
 
 use std::path::PathBuf;
 
