@@ -1,10 +1,10 @@
 //! Golden round trip: every sample is traced, its SVG rasterized with resvg and compared with the
-//! reference PNG in `tests/golden/`. See `tests/README.md`; `BLESS=1 cargo test` rewrites the
-//! references.
+//! reference PNG in `tests/golden/`. See `tests/README.md`; `BLESS=1 cargo test --test it golden::`
+//! rewrites the references. One test per sample (`golden::face_scan`, ...).
 
 use crate::support;
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use crawltrace::stages::decode;
 use crawltrace::{render_svg, to_svg, trace, TraceOptions};
@@ -16,49 +16,41 @@ const PER_PIXEL_TOLERANCE: u8 = 48;
 /// moves by one pixel over a few pen widths stays under it, a missing or extra curve does not.
 const ALLOWED_DIFFERING_PER_MILLION: usize = 2_000;
 
-fn samples() -> Vec<PathBuf> {
-    support::sample_images()
-}
+support::sample_tests!(traces_like_its_reference);
 
-#[test]
-fn traced_samples_render_like_their_references() {
+/// Traces `image`, rasterizes the SVG and compares it with its reference; with `BLESS=1`, writes
+/// the reference instead.
+fn traces_like_its_reference(image: &Path) {
     let bless = std::env::var_os("BLESS").is_some_and(|v| v != "0");
     let golden = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("tests")
         .join("golden");
-    let mut failures = Vec::new();
-    for image in samples() {
-        let stem = image.file_stem().unwrap().to_string_lossy().into_owned();
-        let picture = decode::decode_image(&std::fs::read(&image).unwrap()).unwrap();
-        let traced = trace(&picture, &TraceOptions::default()).unwrap();
-        let actual = render_svg(&to_svg(&traced.drawing), 1.0).unwrap();
-        let reference = golden.join(format!("{stem}.png"));
-        if bless {
-            std::fs::create_dir_all(&golden).unwrap();
-            actual.save(&reference).unwrap();
-            continue;
-        }
-        let expected = match image::open(&reference) {
-            Ok(expected) => expected.to_rgba8(),
-            Err(e) => {
-                failures.push(format!(
-                    "{stem}: no reference {} ({e}); run BLESS=1 cargo test --test golden",
-                    reference.display()
-                ));
-                continue;
-            }
-        };
-        let allowed =
-            actual.width() as usize * actual.height() as usize * ALLOWED_DIFFERING_PER_MILLION
-                / 1_000_000;
-        let comparison = support::compare_images(&expected, &actual, PER_PIXEL_TOLERANCE, allowed);
-        if !comparison.passed() {
-            let diff = support::write_diff(&stem, &expected, &actual);
-            failures.push(format!(
-                "{stem}: {comparison}; expected | difference | actual written to {}",
-                diff.display()
-            ));
-        }
+    let stem = image.file_stem().unwrap().to_string_lossy().into_owned();
+    let picture = decode::decode_image(&std::fs::read(image).unwrap()).unwrap();
+    let traced = trace(&picture, &TraceOptions::default()).unwrap();
+    let actual = render_svg(&to_svg(&traced.drawing), 1.0).unwrap();
+    let reference = golden.join(format!("{stem}.png"));
+    if bless {
+        std::fs::create_dir_all(&golden).unwrap();
+        actual.save(&reference).unwrap();
+        return;
     }
-    assert!(failures.is_empty(), "{}", failures.join("\n"));
+    let expected = match image::open(&reference) {
+        Ok(expected) => expected.to_rgba8(),
+        Err(e) => panic!(
+            "{stem}: no reference {} ({e}); run BLESS=1 cargo test --test it golden::",
+            reference.display()
+        ),
+    };
+    let allowed =
+        actual.width() as usize * actual.height() as usize * ALLOWED_DIFFERING_PER_MILLION
+            / 1_000_000;
+    let comparison = support::compare_images(&expected, &actual, PER_PIXEL_TOLERANCE, allowed);
+    if !comparison.passed() {
+        let diff = support::write_diff(&stem, &expected, &actual);
+        panic!(
+            "{stem}: {comparison}; expected | difference | actual written to {}",
+            diff.display()
+        );
+    }
 }

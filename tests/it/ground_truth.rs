@@ -4,7 +4,7 @@
 
 use crate::support;
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use crawltrace::stages::decode;
 use crawltrace::{to_svg, trace, TraceOptions};
@@ -33,15 +33,6 @@ const KNOWN_FAILURES: &[(&str, &str)] = &[
     ),
 ];
 
-fn samples() -> Vec<PathBuf> {
-    let images = support::sample_images();
-    assert!(
-        images.len() >= 10,
-        "expected at least ten samples, found {images:?}"
-    );
-    images
-}
-
 fn traced_svg(image: &Path) -> String {
     let bytes = std::fs::read(image).unwrap();
     let picture = decode::decode_image(&bytes).unwrap();
@@ -50,37 +41,47 @@ fn traced_svg(image: &Path) -> String {
     to_svg(&traced.drawing)
 }
 
-#[test]
-fn every_true_curve_comes_out_as_exactly_one_path() {
-    let mut unexpected = Vec::new();
-    for image in samples() {
+mod every_true_curve_comes_out_as_exactly_one_path {
+    use super::*;
+
+    support::sample_tests!(check);
+
+    /// Fails when `image` fails and is not a known failure, and when a known failure passes (so
+    /// that [`KNOWN_FAILURES`] and the README's table stay true); a known failure is reported on
+    /// stderr (`cargo test -- --nocapture` shows it).
+    fn check(image: &Path) {
         let name = image.file_name().unwrap().to_string_lossy().into_owned();
         let truth_svg = std::fs::read_to_string(image.with_extension("truth.svg"))
             .unwrap_or_else(|e| panic!("{name} has no truth file: {e}"));
         let truth = support::load_curves(&truth_svg);
         let pen = support::load_stroke_width(&truth_svg).expect("truth has a stroke width");
-        let output = support::load_curves(&traced_svg(&image));
+        let output = support::load_curves(&traced_svg(image));
         let report = support::match_curves(&truth, &output, pen / 2.0 + 2.0);
         let known = KNOWN_FAILURES.iter().find(|(known, _)| *known == name);
         match (report.passed(), known) {
-            (true, None) | (false, Some(_)) => {}
-            (false, None) => unexpected.push(format!("{name} fails:\n{report}")),
-            (true, Some((_, why))) => unexpected.push(format!(
-                "{name} passes now (listed as known failure: {why}); remove it from KNOWN_FAILURES and update the README table"
-            )),
+            (true, None) => {}
+            (false, Some((_, why))) => eprintln!("{name}: known failure ({why}):\n{report}"),
+            (false, None) => panic!("{name} fails:\n{report}"),
+            (true, Some((_, why))) => panic!(
+                "{name} passes now (listed as known failure: {why}); remove it from \
+                 KNOWN_FAILURES and update the README table"
+            ),
         }
     }
-    assert!(unexpected.is_empty(), "{}", unexpected.join("\n\n"));
 }
 
-#[test]
-fn traced_svg_is_valid_for_strict_parsers() {
-    for image in samples() {
-        let svg = traced_svg(&image);
+mod traced_svg_is_valid_for_strict_parsers {
+    use super::*;
+
+    support::sample_tests!(check);
+
+    /// usvg reads the SVG, its canvas is the image's size, and it holds only our elements.
+    fn check(image: &Path) {
+        let svg = traced_svg(image);
         let options = usvg::Options::default();
         let tree = usvg::Tree::from_str(&svg, &options)
             .unwrap_or_else(|e| panic!("{}: usvg rejects the SVG: {e}", image.display()));
-        let picture = image::open(&image).unwrap();
+        let picture = image::open(image).unwrap();
         assert_eq!(
             (tree.size().width() as u32, tree.size().height() as u32),
             (picture.width(), picture.height()),

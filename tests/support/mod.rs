@@ -31,6 +31,60 @@ pub struct Polyline {
     pub closed: bool,
 }
 
+/// One `#[test]` per sample drawing, named after it, each calling `$check(&path)`, so that a
+/// failing sample runs alone: `cargo test --test it golden::face_scan`. Use inside a test module
+/// as `support::sample_tests!(check);` with `fn check(image: &Path)`. The list leaves out the
+/// benchmark page (`page-4000x3000.png`, too slow for debug-build tests); the generated
+/// `every_sample_has_a_test` fails when it and the folder ([`sample_images`]) disagree.
+#[allow(unused_macros)]
+macro_rules! sample_tests {
+    ($check:path) => {
+        $crate::support::sample_tests!(@each $check,
+            face_clean => "face-clean.png",
+            face_scan => "face-scan.jpg",
+            letters_clean => "letters-clean.png",
+            letters_scan => "letters-scan.jpg",
+            nested_ellipses_thick => "nested-ellipses-thick.png",
+            objects_clean => "objects-clean.png",
+            shapes_16bit => "shapes-16bit.png",
+            silhouettes_clean => "silhouettes-clean.png",
+            silhouettes_scan => "silhouettes-scan.jpg",
+            spiral_waves_thin => "spiral-waves-thin.png",
+            squares_triangles_thick => "squares-triangles-thick.png",
+            star_circle_thin => "star-circle-thin.png",
+            weather_alpha => "weather-alpha.png",
+        );
+    };
+    (@each $check:path, $($test:ident => $file:literal),* $(,)?) => {
+        $(
+            #[test]
+            fn $test() {
+                $check(&$crate::support::sample_path($file));
+            }
+        )*
+
+        #[test]
+        fn every_sample_has_a_test() {
+            let listed: Vec<std::path::PathBuf> =
+                [$($file),*].iter().map(|file| $crate::support::sample_path(file)).collect();
+            assert_eq!(
+                listed,
+                $crate::support::sample_images(),
+                "the samples in sample_tests! (tests/support/mod.rs) are not those in samples/"
+            );
+        }
+    };
+}
+#[allow(unused_imports)]
+pub(crate) use sample_tests;
+
+/// The path of `file` in `samples/`.
+pub fn sample_path(file: &str) -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("samples")
+        .join(file)
+}
+
 /// The sample drawings in `samples/` (every image file), sorted, without the 12-megapixel
 /// benchmark page, which is too slow for debug-build tests.
 pub fn sample_images() -> Vec<std::path::PathBuf> {
