@@ -43,20 +43,7 @@ fn tree(files: &[(&str, &str)]) -> TempDir {
 
 /// Every file under `folder`, as sorted relative paths with `/`.
 fn files_under(folder: &Path) -> Vec<String> {
-    let mut names = Vec::new();
-    for entry in walkdir::WalkDir::new(folder).min_depth(1) {
-        let entry = entry.unwrap();
-        if entry.file_type().is_file() {
-            let relative = entry.path().strip_prefix(folder).unwrap();
-            let parts: Vec<_> = relative
-                .components()
-                .map(|c| c.as_os_str().to_string_lossy().into_owned())
-                .collect();
-            names.push(parts.join("/"));
-        }
-    }
-    names.sort();
-    names
+    crate::support::files_under(folder).into_keys().collect()
 }
 
 fn quiet() -> BatchOptions {

@@ -5,28 +5,20 @@
 use std::collections::{BTreeMap, BTreeSet};
 use std::fs;
 use std::path::Path;
-use std::process::{Command, Output};
+use std::process::Output;
 use std::time::{Duration, SystemTime};
 
 use image::{DynamicImage, GrayImage, ImageFormat, Luma};
 
-const BINARY: &str = env!("CARGO_BIN_EXE_crawltrace");
+use crate::support::cli::{self, describe, stderr_lines};
+use crate::support::files_under;
 
-/// Runs the binary in `folder` and checks what must hold for every run: no panic, nothing on
-/// standard output (batch results go to files), and no progress bar, since stderr is a pipe here
-/// and not a terminal (no carriage returns, no ANSI escapes).
+/// Runs the binary in `folder` (no panic: [`cli::run`]) and checks what must hold for every batch
+/// run: nothing on standard output (batch results go to files), and no progress bar, since stderr
+/// is a pipe here and not a terminal (no carriage returns, no ANSI escapes).
 fn run(args: &[&str], folder: &Path) -> Output {
-    let output = Command::new(BINARY)
-        .args(args)
-        .current_dir(folder)
-        .output()
-        .expect("the binary runs");
+    let output = cli::run(args, folder);
     let stderr = String::from_utf8_lossy(&output.stderr);
-    assert!(
-        !stderr.contains("panicked") && !stderr.contains("RUST_BACKTRACE"),
-        "panicked:\n{}",
-        describe(args, &output)
-    );
     assert!(
         !stderr.contains('\r') && !stderr.contains('\x1b'),
         "a progress bar or escape codes on a stderr that is not a terminal:\n{}",
@@ -40,32 +32,9 @@ fn run(args: &[&str], folder: &Path) -> Output {
     output
 }
 
-fn describe(args: &[&str], output: &Output) -> String {
-    format!(
-        "crawltrace {}\nexit: {:?}\nstderr:\n{}",
-        args.join(" "),
-        output.status.code(),
-        String::from_utf8_lossy(&output.stderr)
-    )
-}
-
-/// Runs the binary and checks its exit code, showing the command and its stderr otherwise.
+/// Runs the binary as [`run`] does and checks its exit code.
 fn run_expecting(code: i32, args: &[&str], folder: &Path) -> Output {
-    let output = run(args, folder);
-    assert_eq!(
-        output.status.code(),
-        Some(code),
-        "{}",
-        describe(args, &output)
-    );
-    output
-}
-
-fn stderr_lines(output: &Output) -> Vec<String> {
-    String::from_utf8_lossy(&output.stderr)
-        .lines()
-        .map(str::to_string)
-        .collect()
+    cli::expect_code(code, args, run(args, folder))
 }
 
 /// The drawings of the test tree: what is drawn, and how many paths (closed among them) the
@@ -158,23 +127,6 @@ fn test_tree() -> tempfile::TempDir {
     write_file(&input.join("bad/truncated.png"), &png[..png.len() / 2]);
     write_file(&input.join("readme.txt"), b"not an image");
     root
-}
-
-/// Every file under `folder` with its bytes, by relative path with `/`.
-fn files_under(folder: &Path) -> BTreeMap<String, Vec<u8>> {
-    let mut files = BTreeMap::new();
-    for entry in walkdir::WalkDir::new(folder).min_depth(1) {
-        let entry = entry.unwrap();
-        if entry.file_type().is_file() {
-            let relative = entry.path().strip_prefix(folder).unwrap();
-            let parts: Vec<_> = relative
-                .components()
-                .map(|c| c.as_os_str().to_string_lossy().into_owned())
-                .collect();
-            files.insert(parts.join("/"), fs::read(entry.path()).unwrap());
-        }
-    }
-    files
 }
 
 /// The `.svg` files under `folder`, by relative path with `/`.

@@ -8,17 +8,17 @@
 //! speed is measured by `cargo bench`.
 
 use crate::hostile;
+use crate::support::cli::{self, stderr_lines};
+use crate::support::files_under;
 
 use std::collections::BTreeMap;
 use std::fs;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Child, Command, Output, Stdio};
 use std::thread;
 use std::time::{Duration, Instant};
 
 use image::{DynamicImage, ImageFormat};
-
-const BINARY: &str = env!("CARGO_BIN_EXE_crawltrace");
 
 /// The address space a run may take, in KiB: a blow-up (the issue's 3.5 to 6.9 GB) aborts.
 /// DECISION: 2 GiB of address space, not 500 MB, because address space counts thread stacks and
@@ -41,7 +41,7 @@ fn run_with_limits(args: &[&str], folder: &Path, ulimits: &str) -> Output {
     let child = Command::new("sh")
         .arg("-c")
         .arg(script)
-        .arg(BINARY)
+        .arg(cli::binary())
         .args(args)
         .current_dir(folder)
         .stdin(Stdio::null())
@@ -56,10 +56,7 @@ fn run_with_limits(args: &[&str], folder: &Path, ulimits: &str) -> Output {
         "crawltrace {args:?} crashed or was killed ({:?}):\n{stderr}",
         output.status
     );
-    assert!(
-        !stderr.contains("panicked") && !stderr.contains("RUST_BACKTRACE"),
-        "crawltrace {args:?} panicked:\n{stderr}"
-    );
+    cli::assert_no_panic(args, &output);
     output
 }
 
@@ -74,13 +71,6 @@ fn wait_with_deadline(mut child: Child, args: &[&str]) -> Output {
         thread::sleep(Duration::from_millis(20));
     }
     child.wait_with_output().expect("output is collected")
-}
-
-fn stderr_lines(output: &Output) -> Vec<String> {
-    String::from_utf8_lossy(&output.stderr)
-        .lines()
-        .map(str::to_string)
-        .collect()
 }
 
 fn make_fifo(path: &Path) {
@@ -164,7 +154,7 @@ fn endless_standard_input_is_refused_from_its_first_bytes() {
         .arg(format!(
             "ulimit -v {ADDRESS_SPACE_KIB}; exec \"$0\" trace - -o out.svg"
         ))
-        .arg(BINARY)
+        .arg(cli::binary())
         .current_dir(folder.path())
         .stdin(fs::File::open("/dev/zero").unwrap())
         .stdout(Stdio::piped())
@@ -382,30 +372,19 @@ fn kill_batch_inputs(folder: &Path) {
 }
 
 /// Every file under `folder`, by relative path, with its bytes.
-fn tree(folder: &Path) -> BTreeMap<PathBuf, Vec<u8>> {
-    let mut files = BTreeMap::new();
-    let mut pending = vec![folder.to_path_buf()];
-    while let Some(current) = pending.pop() {
-        let Ok(entries) = fs::read_dir(&current) else {
-            continue;
-        };
-        for entry in entries {
-            let path = entry.unwrap().path();
-            if path.is_dir() {
-                pending.push(path);
-            } else {
-                let bytes = fs::read(&path).unwrap();
-                files.insert(path.strip_prefix(folder).unwrap().to_path_buf(), bytes);
-            }
-        }
+/// Every file under `folder` (none while the batch has not made it yet).
+fn tree(folder: &Path) -> BTreeMap<String, Vec<u8>> {
+    if folder.exists() {
+        files_under(folder)
+    } else {
+        BTreeMap::new()
     }
-    files
 }
 
 fn count_svgs(folder: &Path) -> usize {
     tree(folder)
         .keys()
-        .filter(|path| path.extension().is_some_and(|extension| extension == "svg"))
+        .filter(|path| path.ends_with(".svg"))
         .count()
 }
 
@@ -429,7 +408,7 @@ fn kill_9_at_several_moments_then_a_rerun_leaves_exactly_the_clean_outputs() {
     );
     let clean = tree(&root.path().join("clean"));
     assert_eq!(clean.len(), 12);
-    assert!(clean.keys().all(|path| path.extension().unwrap() == "svg"));
+    assert!(clean.keys().all(|path| path.ends_with(".svg")));
 
     enum Moment {
         AfterOutputs(usize),
@@ -448,7 +427,7 @@ fn kill_9_at_several_moments_then_a_rerun_leaves_exactly_the_clean_outputs() {
         let out = format!("out{round}");
         let out_path = root.path().join(&out);
         let args = ["trace", "in", "-o", &out, "-r", "-q", "--jobs", "2"];
-        let mut child = Command::new(BINARY)
+        let mut child = Command::new(cli::binary())
             .args(args)
             .current_dir(root.path())
             .stdout(Stdio::null())

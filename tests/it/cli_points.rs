@@ -4,11 +4,11 @@
 use std::f64::consts::TAU;
 use std::fmt::Write as _;
 use std::fs;
-use std::io::Write as _;
 use std::path::Path;
-use std::process::{Command, Stdio};
 
 use serde_json::Value;
+
+use crate::support::cli;
 
 /// One finished run of the binary.
 struct Run {
@@ -29,7 +29,6 @@ impl Run {
 
     fn succeeded(self) -> Self {
         assert_eq!(self.code, Some(0), "expected success\n{}", self.describe());
-        self.assert_no_panic();
         self
     }
 
@@ -42,7 +41,6 @@ impl Run {
             "expected exit code 2\n{}",
             self.describe()
         );
-        self.assert_no_panic();
         let (warnings, errors): (Vec<&str>, Vec<&str>) = self
             .stderr
             .lines()
@@ -68,16 +66,6 @@ impl Run {
         errors[0].to_string()
     }
 
-    fn assert_no_panic(&self) {
-        for marker in ["panicked", "backtrace", "RUST_BACKTRACE"] {
-            assert!(
-                !self.stderr.contains(marker),
-                "{marker:?} in stderr\n{}",
-                self.describe()
-            );
-        }
-    }
-
     fn stdout_text(&self) -> String {
         String::from_utf8(self.stdout.clone())
             .unwrap_or_else(|_| panic!("stdout is not UTF-8\n{}", self.describe()))
@@ -91,26 +79,7 @@ impl Run {
 
 /// Runs `crawltrace <args>` in `folder`, feeding `stdin` (empty if `None`).
 fn crawltrace(folder: &Path, args: &[&str], stdin: Option<&[u8]>) -> Run {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_crawltrace"))
-        .args(args)
-        .current_dir(folder)
-        // A panic would print its backtrace; the checks above look for it.
-        .env("RUST_BACKTRACE", "1")
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("the crawltrace binary starts");
-    let mut input = child.stdin.take().expect("stdin is piped");
-    let bytes = stdin.unwrap_or_default().to_vec();
-    // Write from another thread: a large input could otherwise fill the pipe while the child
-    // fills its output pipe.
-    let writer = std::thread::spawn(move || {
-        // The child may exit without reading everything; that is not this test's failure.
-        let _ = input.write_all(&bytes);
-    });
-    let output = child.wait_with_output().expect("crawltrace runs");
-    writer.join().expect("stdin writer finishes");
+    let output = cli::run_with_stdin(args, folder, stdin.unwrap_or_default());
     Run {
         command: format!("crawltrace {}", args.join(" ")),
         code: output.status.code(),

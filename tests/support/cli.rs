@@ -1,5 +1,6 @@
 //! Running the `crawltrace` binary in the command-line tests: with standard input on a real pipe,
-//! checked for panics, described on failure; and the skip-stroke sketch they trace.
+//! checked for panics, described on failure; and the skip-stroke sketch they trace. The one
+//! runner of the command-line tests (`cli_*`); `cli_hostile` adds resource limits around it.
 
 use std::io::Write;
 use std::path::Path;
@@ -28,15 +29,16 @@ pub fn run_with_stdin(args: &[&str], folder: &Path, stdin: &[u8]) -> Output {
         .spawn()
         .expect("the binary starts");
     let mut pipe = child.stdin.take().expect("stdin is piped");
-    // The binary may stop reading early (a usage error); a broken pipe is then expected.
-    let _ = pipe.write_all(stdin);
-    drop(pipe);
+    let bytes = stdin.to_vec();
+    // Written from another thread: a large input could otherwise fill the pipe while the child
+    // fills its output pipe. The binary may stop reading early (a usage error); a broken pipe is
+    // then expected.
+    let writer = std::thread::spawn(move || {
+        let _ = pipe.write_all(&bytes);
+    });
     let output = child.wait_with_output().expect("the binary runs");
-    let stderr = String::from_utf8_lossy(&output.stderr);
-    assert!(
-        !stderr.contains("panicked") && !stderr.contains("RUST_BACKTRACE"),
-        "crawltrace {args:?} panicked:\n{stderr}"
-    );
+    writer.join().expect("the stdin writer finishes");
+    assert_no_panic(args, &output);
     output
 }
 
@@ -45,10 +47,14 @@ pub fn run(args: &[&str], folder: &Path) -> Output {
     run_with_stdin(args, folder, b"")
 }
 
-/// Runs the binary as [`run_with_stdin`] does and checks its exit code, showing the command and
-/// its stderr otherwise.
+/// Runs the binary as [`run_with_stdin`] does and checks its exit code.
 pub fn run_expecting(code: i32, args: &[&str], folder: &Path, stdin: &[u8]) -> Output {
-    let output = run_with_stdin(args, folder, stdin);
+    expect_code(code, args, run_with_stdin(args, folder, stdin))
+}
+
+/// Checks that `output` (of `crawltrace ARGS`) exited with `code`, showing the command and its
+/// stderr otherwise.
+pub fn expect_code(code: i32, args: &[&str], output: Output) -> Output {
     assert_eq!(
         output.status.code(),
         Some(code),
@@ -56,6 +62,19 @@ pub fn run_expecting(code: i32, args: &[&str], folder: &Path, stdin: &[u8]) -> O
         describe(args, &output)
     );
     output
+}
+
+/// Checks that `crawltrace ARGS` did not panic (its stderr holds no panic message or backtrace
+/// hint).
+pub fn assert_no_panic(args: &[&str], output: &Output) {
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    for marker in ["panicked", "RUST_BACKTRACE", "stack backtrace"] {
+        assert!(
+            !stderr.contains(marker),
+            "{marker:?}: a panic\n{}",
+            describe(args, output)
+        );
+    }
 }
 
 /// The command, its exit code and its stderr, for failure messages.
@@ -66,6 +85,14 @@ pub fn describe(args: &[&str], output: &Output) -> String {
         output.status.code(),
         String::from_utf8_lossy(&output.stderr)
     )
+}
+
+/// Standard error, one string a line.
+pub fn stderr_lines(output: &Output) -> Vec<String> {
+    String::from_utf8_lossy(&output.stderr)
+        .lines()
+        .map(str::to_string)
+        .collect()
 }
 
 /// A skip-stroke sketch of `width` × `height` pixels: a dashed circle (closed) and a dashed wave

@@ -105,6 +105,25 @@ pub fn sample_images() -> Vec<std::path::PathBuf> {
     images
 }
 
+/// Every file under `folder` with its bytes, by relative path with `/`, sorted.
+pub fn files_under(folder: &std::path::Path) -> std::collections::BTreeMap<String, Vec<u8>> {
+    let mut files = std::collections::BTreeMap::new();
+    for entry in walkdir::WalkDir::new(folder).min_depth(1) {
+        let entry = entry.unwrap_or_else(|e| panic!("{}: {e}", folder.display()));
+        if entry.file_type().is_file() {
+            let relative = entry.path().strip_prefix(folder).unwrap();
+            let parts: Vec<_> = relative
+                .components()
+                .map(|c| c.as_os_str().to_string_lossy().into_owned())
+                .collect();
+            let bytes = std::fs::read(entry.path())
+                .unwrap_or_else(|e| panic!("{}: {e}", entry.path().display()));
+            files.insert(parts.join("/"), bytes);
+        }
+    }
+    files
+}
+
 /// Every subpath of every path in `svg_text`, flattened finely and moved by the path's absolute
 /// transform (viewBox included), in document order. Paths usvg drops as invisible (no fill and
 /// no stroke) are not seen.
