@@ -6,11 +6,10 @@
 //! cargo bench --bench reconstruct
 //! ```
 
+#[path = "support/many_curves.rs"]
+mod many_curves;
 #[path = "../tests/support/random.rs"]
 mod random;
-use random::SplitMix64;
-
-use std::f64::consts::TAU;
 
 use crawltrace::stages::crawl::algorithm::crawl;
 use crawltrace::stages::crawl::neighbours::NeighbourGraph;
@@ -26,34 +25,14 @@ fn main() {
 
 const SIZES: [usize; 3] = [10_000, 100_000, 1_000_000];
 
-/// `count` points on many closed curves (ellipses of 100 to 1000 points, about 0.01 apart, each
-/// in its own cell of a grid), in file order: the same scenes as `examples/many_curves.rs`.
+/// `count` points on many closed curves ([`many_curves::ellipse_points`]), rounded to 6 decimals
+/// as in the file `examples/many_curves.rs` writes.
 fn curve_points(count: usize) -> Vec<Point> {
-    let mut random = SplitMix64::new(7);
-    let columns = ((count as f64 / 550.0).sqrt().ceil() as usize).max(1);
-    let mut points = Vec::with_capacity(count);
-    let mut cell = 0;
-    while points.len() < count {
-        let size = ((100.0 + 900.0 * random.unit()) as usize).min(count - points.len());
-        let aspect = 1.0 + random.unit();
-        let a = 0.01 * size as f64 / (std::f64::consts::PI * (1.0 + 1.0 / aspect));
-        let centre = (
-            4.0 * (cell % columns) as f64 + 2.0,
-            4.0 * (cell / columns) as f64 + 2.0,
-        );
-        let phase = TAU * random.unit();
-        for k in 0..size {
-            let angle = phase + TAU * (k as f64 + 0.3 * random.unit()) / size as f64;
-            // Rounded to 6 decimals, as in a point file.
-            let round = |value: f64| (value * 1e6).round() / 1e6;
-            points.push(Point::new(
-                round(centre.0 + a * angle.cos()),
-                round(centre.1 + a / aspect * angle.sin()),
-            ));
-        }
-        cell += 1;
-    }
-    points
+    let round = |value: f64| (value * 1e6).round() / 1e6;
+    many_curves::ellipse_points(count)
+        .into_iter()
+        .map(|(x, y)| Point::new(round(x), round(y)))
+        .collect()
 }
 
 /// The distinct points in lexicographic order: what `reconstruct` triangulates.

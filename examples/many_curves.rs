@@ -12,6 +12,8 @@
 //! cargo run --release --example many_curves -- 1000000 --circles 500 > circles.txt
 //! ```
 
+#[path = "../benches/support/many_curves.rs"]
+mod many_curves;
 #[path = "../tests/support/random.rs"]
 mod random;
 use random::SplitMix64;
@@ -40,31 +42,8 @@ fn main() -> io::Result<()> {
         }
         return out.flush();
     }
-    // Curves of 100 to 1000 points, spaced about 0.01 apart, fit in cells 4 units wide.
-    let columns = ((count as f64 / 550.0).sqrt().ceil() as usize).max(1);
-    let mut written = 0;
-    let mut cell = 0;
-    while written < count {
-        let points = ((100.0 + 900.0 * random.unit()) as usize).min(count - written);
-        let aspect = 1.0 + random.unit();
-        // The ellipse's perimeter is about π(a + b) = 0.01 · points.
-        let a = 0.01 * points as f64 / (std::f64::consts::PI * (1.0 + 1.0 / aspect));
-        let centre = (
-            4.0 * (cell % columns) as f64 + 2.0,
-            4.0 * (cell / columns) as f64 + 2.0,
-        );
-        let phase = TAU * random.unit();
-        for k in 0..points {
-            let angle = phase + TAU * (k as f64 + 0.3 * random.unit()) / points as f64;
-            writeln!(
-                out,
-                "{:.6} {:.6}",
-                centre.0 + a * angle.cos(),
-                centre.1 + a / aspect * angle.sin()
-            )?;
-        }
-        written += points;
-        cell += 1;
+    for (x, y) in many_curves::ellipse_points(count) {
+        writeln!(out, "{x:.6} {y:.6}")?;
     }
     out.flush()
 }

@@ -58,26 +58,16 @@ impl Drawing {
         }
     }
 
-    /// A skip-stroke sketch: strokes with small gaps, rendered from dashed SVG strokes.
+    /// A skip-stroke sketch of the drawing ([`cli::dashed_sketch`]).
     fn render(self) -> GrayImage {
         let shapes = match self {
-            Drawing::CircleAndWave => {
-                r#"<circle cx="70" cy="70" r="45"/>
-                <path d="M20 160 C60 130 100 190 140 160 S 200 130 220 160"/>"#
-            }
+            Drawing::CircleAndWave => cli::CIRCLE_AND_WAVE,
             Drawing::Rectangle => r#"<rect x="40" y="40" width="150" height="110"/>"#,
             Drawing::TwoCircles => {
                 r#"<circle cx="65" cy="100" r="42"/><circle cx="175" cy="100" r="42"/>"#
             }
         };
-        let svg = format!(
-            r##"<svg xmlns="http://www.w3.org/2000/svg" width="240" height="200">
-            <rect width="100%" height="100%" fill="white"/>
-            <g fill="none" stroke="black" stroke-width="3" stroke-linecap="round" stroke-dasharray="22 7">
-            {shapes}</g></svg>"##
-        );
-        let rgba = crawltrace::render_svg(&svg, 1.0).expect("test SVG renders");
-        DynamicImage::ImageRgba8(rgba).to_luma8()
+        cli::dashed_sketch(240, 200, shapes)
     }
 }
 

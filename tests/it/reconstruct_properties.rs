@@ -7,6 +7,7 @@
 //! distances to each other are measured on a fine polyline, and the sampling density is chosen from
 //! those measurements.
 
+use crate::point_sets::edges_of;
 use crate::support::random::SplitMix64;
 use std::collections::{BTreeMap, BTreeSet};
 use std::f64::consts::TAU;
@@ -248,21 +249,6 @@ fn random_closed_curves(random: &mut SplitMix64) -> Vec<ClosedCurve> {
         }
     }
     curves
-}
-
-/// The result's undirected edges (closing edges included) as input index pairs.
-fn index_edges(result: &Reconstruction) -> BTreeSet<(usize, usize)> {
-    let mut edges = BTreeSet::new();
-    for curve in &result.curves {
-        let indices = &curve.indices;
-        let count = indices.len();
-        let pairs = if curve.closed { count } else { count - 1 };
-        for k in 0..pairs {
-            let (a, b) = (indices[k], indices[(k + 1) % count]);
-            edges.insert((a.min(b), a.max(b)));
-        }
-    }
-    edges
 }
 
 /// Whether `found` is `expected` read cyclically, from any start, in either direction.
@@ -698,7 +684,7 @@ fn check_invariants(seed: &str, points: &[Point], result: &Reconstruction) {
             );
         }
     }
-    for (a, b) in index_edges(result) {
+    for (a, b) in edges_of(result) {
         assert!(
             delaunay.has_edge(vertex_of(a), vertex_of(b)),
             "{seed}: edge {a}–{b} ({:?}–{:?}) is not a Delaunay edge",
@@ -753,7 +739,7 @@ fn geometry(points: &[Point], result: &Reconstruction, back: impl Fn(Point) -> P
             .iter()
             .map(|curve| (curve.closed, curve.indices.iter().map(|&i| at(i)).collect()))
             .collect(),
-        edges: index_edges(result)
+        edges: edges_of(result)
             .into_iter()
             .map(|(a, b)| (at(a).min(at(b)), at(a).max(at(b))))
             .collect(),

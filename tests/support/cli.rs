@@ -95,16 +95,24 @@ pub fn stderr_lines(output: &Output) -> Vec<String> {
         .collect()
 }
 
+/// The shapes of [`sketch`]: a circle (closed) and a wave (open).
+pub const CIRCLE_AND_WAVE: &str = r#"<circle cx="70" cy="70" r="45"/>
+    <path d="M20 160 C60 130 100 190 140 160 S 200 130 220 160"/>"#;
+
 /// A skip-stroke sketch of `width` × `height` pixels: a dashed circle (closed) and a dashed wave
 /// (open), as a gray image.
 pub fn sketch(width: u32, height: u32) -> GrayImage {
+    dashed_sketch(width, height, CIRCLE_AND_WAVE)
+}
+
+/// A skip-stroke sketch of the SVG `shapes` on a white `width` × `height` page: strokes with
+/// small gaps (a 3 px pen, 22 px dashes, 7 px gaps), rendered with resvg, as a gray image.
+pub fn dashed_sketch(width: u32, height: u32, shapes: &str) -> GrayImage {
     let svg = format!(
         r##"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}">
         <rect width="100%" height="100%" fill="white"/>
         <g fill="none" stroke="black" stroke-width="3" stroke-linecap="round" stroke-dasharray="22 7">
-          <circle cx="70" cy="70" r="45"/>
-          <path d="M20 160 C60 130 100 190 140 160 S 200 130 220 160"/>
-        </g></svg>"##
+        {shapes}</g></svg>"##
     );
     let rgba = crawltrace::render_svg(&svg, 1.0).expect("test SVG renders");
     DynamicImage::ImageRgba8(rgba).to_luma8()
