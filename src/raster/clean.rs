@@ -467,6 +467,107 @@ pub(crate) mod tests {
     }
 
     #[test]
+    fn a_bubble_closed_only_at_diagonal_corners_is_filled() {
+        // Ink is 8-connected and paper 4-connected: the ring's two open corners touch only
+        // diagonally, so they close it, and the 4-px bubble inside (under the 6.3-px limit of a
+        // 4-px pen) is filled. The 10-px ring itself is no speck.
+        let mut mask = Bitmap::from_grid(
+            "
+            ......
+            .###..
+            .#..#.
+            .#..#.
+            ..###.
+            ......
+            ",
+        );
+        let report = clean(&mut mask, 4.0);
+        assert_eq!((report.specks_removed, report.holes_filled), (0, 1));
+        assert_eq!(
+            mask,
+            Bitmap::from_grid(
+                "
+                ......
+                .###..
+                .####.
+                .####.
+                ..###.
+                ......
+                ",
+            )
+        );
+    }
+
+    #[test]
+    fn a_speck_in_a_drawn_hole_goes_before_the_hole_is_measured() {
+        // With a 4.6-px pen both limits are π·4.6²/8 = 8.3 px. The hole is 9 px, 8 around the
+        // speck: measured with the speck it would be a pinhole and the whole "o" a blob.
+        let mut mask = Bitmap::from_grid(
+            "
+            .......
+            .#####.
+            .#...#.
+            .#.#.#.
+            .#...#.
+            .#####.
+            .......
+            ",
+        );
+        let report = clean(&mut mask, 4.6);
+        assert_eq!((report.specks_removed, report.holes_filled), (1, 0));
+        assert_eq!(
+            mask,
+            Bitmap::from_grid(
+                "
+                .......
+                .#####.
+                .#...#.
+                .#...#.
+                .#...#.
+                .#####.
+                .......
+                ",
+            )
+        );
+    }
+
+    #[test]
+    fn a_filled_corner_keeps_its_ink_and_loses_its_pinhole() {
+        // Two 3-px strokes meeting at a corner, the corner blotted with ink and a 2-px pinhole
+        // in the blot (a pen skip): the pinhole is filled, no ink is taken off the corner, and
+        // the corner's open side (touching the border) is never a hole.
+        let mut mask = Bitmap::from_grid(
+            "
+            ........
+            .######.
+            .######.
+            .##..##.
+            .######.
+            .###....
+            .###....
+            .###....
+            ",
+        );
+        let report = clean(&mut mask, 3.0);
+        assert_eq!((report.specks_removed, report.holes_filled), (0, 1));
+        assert_eq!(
+            mask,
+            Bitmap::from_grid(
+                "
+                ........
+                .######.
+                .######.
+                .######.
+                .######.
+                .###....
+                .###....
+                .###....
+                ",
+            )
+        );
+    }
+
+    #[test]
     fn degenerate_widths_and_masks_do_not_panic() {
         for width in [0.0, -3.0, f64::NAN, f64::INFINITY, 1e300] {
             let mut mask = Bitmap::from_grid("#.\n.#");

@@ -362,22 +362,24 @@ mod tests {
 
     /// Every prefix of every file, and every file with one byte changed, reads without a panic.
     #[test]
-    fn damaged_files_never_panic() {
+    fn damaged_files_never_panic_and_give_a_usable_density_or_none() {
         let files = [
             with_phys(&encoded(ImageFormat::Png), 11811, 1),
             jpeg(&[jfif(0, 1), exif(tiff(600, 2, 2))]),
             tiff(300, 1, 2),
             encoded(ImageFormat::Bmp),
         ];
+        // Whatever is read from a damaged file is a density the output can use, or none.
+        let usable = |dpi: Option<f64>| dpi.is_none_or(|dpi| PLAUSIBLE_DPI.contains(&dpi));
         for file in &files {
             for end in 0..file.len() {
-                image_dpi(&file[..end]);
+                assert!(usable(image_dpi(&file[..end])), "cut at {end}");
             }
             for at in 0..file.len() {
                 for value in [0x00, 0x7F, 0xFF] {
                     let mut damaged = file.clone();
                     damaged[at] = value;
-                    image_dpi(&damaged);
+                    assert!(usable(image_dpi(&damaged)), "byte {at} set to {value}");
                 }
             }
         }
