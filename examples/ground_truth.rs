@@ -1,4 +1,4 @@
-//! Prints the README's ground-truth table: every sample in `samples/` traced with the stroke-aware
+//! Prints the ground-truth table of `docs/results.md`: every sample in `samples/` traced with the stroke-aware
 //! crawl (default), the paper's plain crawl (`--method paper`) and the robust point-set crawl on
 //! all samples (`--method points`), each scored against the
 //! sample's true curves (`<name>.truth.svg`) by `tests/support`'s matcher: a true curve counts

@@ -1,4 +1,4 @@
-//! Writes `samples/points/shapes.txt`, the sample point set of the README: the cases the paper
+//! Writes `samples/points/shapes.txt`, the sample point set of `docs/point-sets.md`: the cases the paper
 //! shows (an object with a hole, several objects, sharp corners, an open curve, sparse samples,
 //! outliers), sampled with a little jitter by a seeded generator, so the file is the same on
 //! every run. Run: `cargo run --example make_point_set [OUT_FILE]`.

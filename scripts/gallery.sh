@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Regenerates the README gallery in docs/gallery/: traces some samples with `crawltrace trace`
+# Regenerates the README's gallery pictures in docs/gallery/: traces some samples with `crawltrace trace`
 # and rasterizes the results with `crawltrace render`; also reconstructs the sample point set.
 # Usage: scripts/gallery.sh   (from anywhere; builds the release binary first)
 set -euo pipefail

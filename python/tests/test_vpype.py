@@ -1,6 +1,6 @@
 """The vpype plug-in, with vpype installed from PyPI: `vpype ctrace` is found through the entry
 point, adds the traced curves as lines on a layer in CSS pixels (96 / dpi per image pixel), and
-runs in the plotter pipeline of the README."""
+runs in the plotter pipeline of docs/cli.md."""
 
 from __future__ import annotations
 

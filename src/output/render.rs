@@ -66,7 +66,8 @@ pub enum RenderError {
         /// The elements the uses would add.
         elements: f64,
     },
-    /// usvg or resvg panicked on it (a bug upstream, contained: see the README's known limits).
+    /// usvg or resvg panicked on it (a bug upstream, contained: see docs/cli.md, "Known limits
+    /// (upstream)").
     #[error("the renderer failed on it: {0}")]
     Crashed(String),
 }
@@ -165,8 +166,8 @@ pub struct PreparedRender {
 /// Arcs that usvg would turn into more than [`MAX_ARC_CURVES`] curves, and `<use>` elements
 /// that would add more than [`MAX_USE_ELEMENTS`] elements, are refused before usvg parses (an
 /// arc of radius 10³⁸ never finished; ten levels of ten uses make 10¹⁰ elements). Whatever else
-/// usvg might spend unbounded work on while parsing is not seen here (see the README's known
-/// limits); `crawltrace render` runs it in a separate process with time and memory limits.
+/// usvg might spend unbounded work on while parsing is not seen here (see docs/cli.md, "Known
+/// limits (upstream)"); `crawltrace render` runs it in a separate process with time and memory limits.
 ///
 /// # Errors
 ///

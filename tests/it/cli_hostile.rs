@@ -22,7 +22,7 @@ use image::{DynamicImage, ImageFormat};
 
 /// The address space a run may take, in KiB: a blow-up (the 3.5 to 6.9 GB) aborts.
 /// DECISION: 2 GiB of address space, not 500 MB, because address space counts thread stacks and
-/// allocator arenas that are reserved, not used; resident memory is measured by hand (README).
+/// allocator arenas that are reserved, not used; resident memory is measured by hand (docs/cli.md, "Hostile input").
 const ADDRESS_SPACE_KIB: u64 = 2 << 20;
 
 /// A run that takes longer than this hangs (debug builds on a shared two-core machine).

@@ -10,7 +10,7 @@ use crawltrace::stages::decode;
 use crawltrace::{to_svg, trace, TraceOptions};
 
 /// Samples that are known to fail today, with the reason. The test fails when one of them starts
-/// to pass too, so that this list and the README's table stay true.
+/// to pass too, so that this list and the table in `docs/results.md` stay true.
 const KNOWN_FAILURES: &[(&str, &str)] = &[
     (
         "objects-clean.png",
@@ -47,7 +47,7 @@ mod every_true_curve_comes_out_as_exactly_one_path {
     support::sample_tests!(check);
 
     /// Fails when `image` fails and is not a known failure, and when a known failure passes (so
-    /// that [`KNOWN_FAILURES`] and the README's table stay true); a known failure is reported on
+    /// that [`KNOWN_FAILURES`] and the table in `docs/results.md` stay true); a known failure is reported on
     /// stderr (`cargo test -- --nocapture` shows it).
     fn check(image: &Path) {
         let name = image.file_name().unwrap().to_string_lossy().into_owned();
@@ -64,7 +64,7 @@ mod every_true_curve_comes_out_as_exactly_one_path {
             (false, None) => panic!("{name} fails:\n{report}"),
             (true, Some((_, why))) => panic!(
                 "{name} passes now (listed as known failure: {why}); remove it from \
-                 KNOWN_FAILURES and update the README table"
+                 KNOWN_FAILURES and update the table in docs/results.md"
             ),
         }
     }

@@ -5,7 +5,7 @@
 //! multiple components and holes, noise, outliers and non-uniform sampling, plus the cases of
 //! issue 10 (stray points, acute sectors, open ends near curves, thin parts).
 //!
-//! Shared by `tests/robust_points.rs` and `examples/point_benchmark.rs` through `#[path]`.
+//! Shared by `tests/it/robust_points.rs` and `examples/point_benchmark.rs` through `#[path]`.
 #![allow(dead_code)] // each includer uses a different part
 
 pub mod families;
