@@ -199,7 +199,8 @@ fn result_picture(stages: &Stages, svg: &str) -> RgbImage {
     if let Ok(rendered) = render_svg_with(&recolor(svg), &options) {
         for (x, y, pixel) in rendered.enumerate_pixels() {
             if x < width && y < height && pixel.0[0] < RESULT_PAPER_LEVEL {
-                // The rendered paths are pure blue on white: blend by their coverage.
+                // The rendered paths are pure blue on white: blend by their coverage, in the
+                // blue of closed curves.
                 let coverage = 1.0 - f32::from(pixel.0[0]) / 255.0;
                 let under = result.get_pixel(x, y).0;
                 let mix = |a: u8, b: u8| {
@@ -208,7 +209,11 @@ fn result_picture(stages: &Stages, svg: &str) -> RgbImage {
                 result.put_pixel(
                     x,
                     y,
-                    Rgb([mix(under[0], 20), mix(under[1], 90), mix(under[2], 220)]),
+                    Rgb([
+                        mix(under[0], CLOSED_CURVE.0[0]),
+                        mix(under[1], CLOSED_CURVE.0[1]),
+                        mix(under[2], CLOSED_CURVE.0[2]),
+                    ]),
                 );
             }
         }
@@ -231,6 +236,8 @@ fn recolor(svg: &str) -> String {
     }
 }
 
+/// Colours told apart at a glance, one per stroke in turn: six of the Tableau 10 colours (its
+/// orange and red, which mark free ends and open curves here, and its pink and gray left out).
 fn palette(k: usize) -> Rgb<u8> {
     const COLORS: [[u8; 3]; 6] = [
         [31, 119, 180],

@@ -56,14 +56,24 @@ impl Cost {
     }
 }
 
+/// resvg clips layers and filter regions to the canvas grown by this many times its size on
+/// every side.
+const LAYER_GROWTH: f32 = 2.0;
+
+/// An SVG arc command takes seven arguments: rx, ry, rotation, the two flags, x, y.
+const ARC_ARGUMENTS: usize = 7;
+
 /// The estimate of rendering `tree` at `scale` onto a `width` × `height` canvas.
 pub(super) fn estimate(tree: &usvg::Tree, scale: f32, width: u32, height: u32) -> Cost {
     let (w, h) = (width as f32, height as f32);
     let model = Model {
         scale: Transform::from_scale(scale, scale),
-        // resvg clips layers and filter regions to this: the canvas grown by twice its size
-        // on every side.
-        largest_layer: Rect::from_xywh(-2.0 * w, -2.0 * h, 5.0 * w, 5.0 * h),
+        largest_layer: Rect::from_xywh(
+            -LAYER_GROWTH * w,
+            -LAYER_GROWTH * h,
+            (1.0 + 2.0 * LAYER_GROWTH) * w,
+            (1.0 + 2.0 * LAYER_GROWTH) * h,
+        ),
     };
     model.group(tree.root())
 }
@@ -353,7 +363,7 @@ fn largest_arc_radius(d: &str) -> f64 {
             at += 1;
         } else if byte.is_ascii_whitespace() || byte == b',' {
             at += 1;
-        } else if command == b'A' && matches!(argument % 7, 3 | 4) {
+        } else if command == b'A' && matches!(argument % ARC_ARGUMENTS, 3 | 4) {
             // A flag: one character, with or without a separator after it.
             at += 1;
             argument += 1;
@@ -363,7 +373,7 @@ fn largest_arc_radius(d: &str) -> f64 {
                 at += 1;
                 continue;
             }
-            if command == b'A' && argument % 7 < 2 {
+            if command == b'A' && argument % ARC_ARGUMENTS < 2 {
                 let value: f64 = d[at..end].parse().unwrap_or(0.0);
                 largest = largest.max(value.abs());
             }

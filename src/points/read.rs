@@ -241,10 +241,14 @@ fn parse_number(field: &[u8]) -> Option<f64> {
     std::str::from_utf8(field).ok()?.parse().ok()
 }
 
+/// How much of a bad field an error message quotes: enough to find it on its line, short enough
+/// to keep the message on one line.
+const QUOTED_CHARS: usize = 40;
+
 fn shorten(content: &[u8]) -> String {
     let text = String::from_utf8_lossy(content);
     let text = text.trim();
-    match text.char_indices().nth(40) {
+    match text.char_indices().nth(QUOTED_CHARS) {
         Some((cut, _)) => format!("{}…", &text[..cut]),
         None => text.to_string(),
     }

@@ -326,8 +326,7 @@ fn dark_tail_level(histogram: &[u64; 256]) -> Option<u8> {
             .unwrap_or(255) as f64
     };
     let median = quantile(0.5);
-    // Upper quartile − median is 0.674 σ for a Gaussian; at least half a level (quantization).
-    let deviation = ((quantile(0.75) - median) / 0.674).max(0.5);
+    let deviation = ((quantile(0.75) - median) / GAUSSIAN_UPPER_QUARTILE).max(MIN_PAPER_DEVIATION);
     let cut = median - (TAIL_SIGMAS * deviation).max(MIN_SEPARATION);
     if cut < 0.0 {
         return None;
@@ -339,13 +338,29 @@ fn dark_tail_level(histogram: &[u64; 256]) -> Option<u8> {
         .fold((0u64, 0f64), |(count, sum), (value, &n)| {
             (count + n, sum + value as f64 * n as f64)
         });
-    if count < MIN_TAIL_PIXELS.max(total / 1_000_000) {
+    if count < MIN_TAIL_PIXELS.max(total / PAGE_PIXELS_PER_TAIL_PIXEL) {
         return None;
     }
     let ink_mean = sum / count as f64;
-    let level = ((median + ink_mean) / 2.0).min(median - 4.0 * deviation);
+    let level = ((median + ink_mean) / 2.0).min(median - LEVEL_SIGMAS * deviation);
     Some(level.clamp(0.0, 254.0) as u8)
 }
+
+/// The upper quartile of a Gaussian lies this many σ above its median: (quartile − median) / it
+/// estimates the paper's noise σ from the bright half of the histogram, which ink never reaches.
+const GAUSSIAN_UPPER_QUARTILE: f64 = 0.674;
+
+/// The paper's σ is at least half a gray level: levels are quantized, so a perfectly flat paper
+/// still spreads by that much.
+const MIN_PAPER_DEVIATION: f64 = 0.5;
+
+/// The dark tail must also hold one pixel in a million of the page, so that on a huge scan a few
+/// dust pixels are not taken for the drawing.
+const PAGE_PIXELS_PER_TAIL_PIXEL: u64 = 1_000_000;
+
+/// The tail's level is at least this many σ below the paper's median, so that paper noise stays
+/// on the paper's side of it.
+const LEVEL_SIGMAS: f64 = 4.0;
 
 /// See [`dark_tail_level`]: paper noise essentially never reaches 6σ below the median (a
 /// Gaussian: two pixels in a billion; uniform noise: never beyond 1.8σ).

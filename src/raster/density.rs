@@ -20,6 +20,9 @@ const CENTIMETRES_PER_INCH: f64 = 2.54;
 /// are placeholders or damage, and would give absurd sizes.
 const PLAUSIBLE_DPI: RangeInclusive<f64> = 1.0..=100_000.0;
 
+/// A PNG chunk holds 12 bytes besides its data: length, type and CRC, four bytes each.
+const PNG_CHUNK_OVERHEAD: usize = 12;
+
 /// The horizontal pixel density recorded in an image file, in pixels per inch, or `None` when the
 /// file records none (or only an aspect ratio, or an implausible value).
 ///
@@ -104,7 +107,7 @@ fn png_dpi(bytes: &[u8]) -> Option<f64> {
                     .then(|| per_inch(f64::from(per_metre), METRES_PER_INCH));
             }
             b"IDAT" | b"IEND" => return None,
-            _ => at = at.checked_add(length)?.checked_add(12)?,
+            _ => at = at.checked_add(length)?.checked_add(PNG_CHUNK_OVERHEAD)?,
         }
     }
 }
