@@ -14,6 +14,8 @@ use crawltrace::batch::{
 use crawltrace::files::OutputRefusal;
 use tempfile::TempDir;
 
+use crate::support::set_modified;
+
 fn fake_processor(path: &Path) -> Result<FileResult, String> {
     let content = fs::read_to_string(path).map_err(|error| error.to_string())?;
     if content.starts_with("BAD") {
@@ -81,15 +83,6 @@ fn with_status(summary: &BatchSummary<String>, wanted: &str) -> Vec<String> {
         })
         .map(|outcome| outcome.relative.to_string_lossy().replace('\\', "/"))
         .collect()
-}
-
-fn set_modified(path: &Path, time: SystemTime) {
-    fs::File::options()
-        .write(true)
-        .open(path)
-        .unwrap()
-        .set_modified(time)
-        .unwrap();
 }
 
 #[test]

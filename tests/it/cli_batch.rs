@@ -11,7 +11,7 @@ use std::time::{Duration, SystemTime};
 use image::{DynamicImage, GrayImage, ImageFormat, Luma};
 
 use crate::support::cli::{self, describe, stderr_lines};
-use crate::support::files_under;
+use crate::support::{files_under, set_modified};
 
 /// Runs the binary in `folder` (no panic: [`cli::run`]) and checks what must hold for every batch
 /// run: nothing on standard output (batch results go to files), and no progress bar, since stderr
@@ -129,15 +129,6 @@ fn svgs_under(folder: &Path) -> BTreeSet<String> {
 
 fn modified(path: &Path) -> SystemTime {
     fs::metadata(path).unwrap().modified().unwrap()
-}
-
-fn set_modified(path: &Path, time: SystemTime) {
-    fs::File::options()
-        .write(true)
-        .open(path)
-        .unwrap()
-        .set_modified(time)
-        .unwrap();
 }
 
 /// The output of `relative` (an input path with `/`): the same path with the extension `svg`.

@@ -124,6 +124,16 @@ pub fn files_under(folder: &std::path::Path) -> std::collections::BTreeMap<Strin
     files
 }
 
+/// Sets the modification time of the file at `path` (to make an output look older or newer than
+/// its input).
+pub fn set_modified(path: &std::path::Path, time: std::time::SystemTime) {
+    std::fs::File::options()
+        .write(true)
+        .open(path)
+        .and_then(|file| file.set_modified(time))
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+}
+
 /// Every subpath of every path in `svg_text`, flattened finely and moved by the path's absolute
 /// transform (viewBox included), in document order. Paths usvg drops as invisible (no fill and
 /// no stroke) are not seen.
