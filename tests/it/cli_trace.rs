@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 
 use image::{DynamicImage, GrayImage, ImageFormat, Luma};
 
-use support::cli::{describe, run, sketch};
+use support::cli::{run, run_expecting, sketch};
 
 fn write_image(folder: &Path, name: &str, image: DynamicImage, format: ImageFormat) -> PathBuf {
     let path = folder.join(name);
@@ -16,6 +16,11 @@ fn write_image(folder: &Path, name: &str, image: DynamicImage, format: ImageForm
         .save_with_format(&path, format)
         .expect("test image saves");
     path
+}
+
+/// The test sketch ([`sketch`], 240 × 200) as a PNG named `name` in `folder`.
+fn write_sketch(folder: &Path, name: &str) -> PathBuf {
+    write_image(folder, name, sketch(240, 200).into(), ImageFormat::Png)
 }
 
 fn path_count(svg: &str) -> (usize, usize) {
@@ -30,15 +35,9 @@ fn path_count(svg: &str) -> (usize, usize) {
 #[test]
 fn traces_a_png_beside_the_input_with_one_path_per_shape() {
     let folder = tempfile::tempdir().unwrap();
-    write_image(
-        folder.path(),
-        "sketch.png",
-        sketch(240, 200).into(),
-        ImageFormat::Png,
-    );
+    write_sketch(folder.path(), "sketch.png");
     let args = ["trace", "sketch.png"];
-    let output = run(&args, folder.path());
-    assert!(output.status.success(), "{}", describe(&args, &output));
+    run_expecting(0, &args, folder.path(), b"");
     let svg =
         std::fs::read_to_string(folder.path().join("sketch.svg")).expect("sketch.svg written");
     assert!(svg.contains(r#"viewBox="0 0 240 200""#), "{svg}");
@@ -75,8 +74,7 @@ fn every_common_format_and_pixel_type_traces_the_same_shapes() {
     for (name, picture, format) in cases {
         write_image(folder.path(), name, picture, format);
         let args = ["trace", name, "-o", "-"];
-        let output = run(&args, folder.path());
-        assert!(output.status.success(), "{}", describe(&args, &output));
+        let output = run_expecting(0, &args, folder.path(), b"");
         let svg = String::from_utf8(output.stdout).unwrap();
         assert_eq!(path_count(&svg), (2, 1), "{name}:\n{svg}");
     }
@@ -85,12 +83,7 @@ fn every_common_format_and_pixel_type_traces_the_same_shapes() {
 #[test]
 fn output_is_byte_identical_across_runs() {
     let folder = tempfile::tempdir().unwrap();
-    write_image(
-        folder.path(),
-        "s.png",
-        sketch(240, 200).into(),
-        ImageFormat::Png,
-    );
+    write_sketch(folder.path(), "s.png");
     let first = run(&["trace", "s.png", "-o", "-"], folder.path()).stdout;
     let second = run(&["trace", "s.png", "-o", "-"], folder.path()).stdout;
     assert!(!first.is_empty());
@@ -125,13 +118,7 @@ fn bad_inputs_are_one_line_errors_with_exit_code_2() {
         ("missing.png", "no such file"),
     ] {
         let args = ["trace", name];
-        let output = run(&args, folder.path());
-        assert_eq!(
-            output.status.code(),
-            Some(2),
-            "{}",
-            describe(&args, &output)
-        );
+        let output = run_expecting(2, &args, folder.path(), b"");
         let stderr = String::from_utf8(output.stderr).unwrap();
         assert_eq!(stderr.lines().count(), 1, "{}", stderr);
         assert!(stderr.starts_with(&format!("error: {name}: ")), "{stderr}");
@@ -144,21 +131,10 @@ fn bad_inputs_are_one_line_errors_with_exit_code_2() {
 #[test]
 fn never_overwrites_the_input() {
     let folder = tempfile::tempdir().unwrap();
-    let input = write_image(
-        folder.path(),
-        "s.png",
-        sketch(240, 200).into(),
-        ImageFormat::Png,
-    );
+    let input = write_sketch(folder.path(), "s.png");
     let before = std::fs::read(&input).unwrap();
     let args = ["trace", "s.png", "-o", "s.png"];
-    let output = run(&args, folder.path());
-    assert_eq!(
-        output.status.code(),
-        Some(2),
-        "{}",
-        describe(&args, &output)
-    );
+    run_expecting(2, &args, folder.path(), b"");
     assert_eq!(std::fs::read(&input).unwrap(), before);
 }
 
@@ -169,8 +145,7 @@ fn light_ink_on_dark_paper_needs_invert() {
     image::imageops::invert(&mut negative);
     write_image(folder.path(), "neg.png", negative.into(), ImageFormat::Png);
     let args = ["trace", "neg.png", "--invert", "-o", "-"];
-    let output = run(&args, folder.path());
-    assert!(output.status.success(), "{}", describe(&args, &output));
+    let output = run_expecting(0, &args, folder.path(), b"");
     assert_eq!(
         path_count(&String::from_utf8(output.stdout).unwrap()),
         (2, 1)
@@ -180,12 +155,7 @@ fn light_ink_on_dark_paper_needs_invert() {
 #[test]
 fn options_change_the_output_as_documented() {
     let folder = tempfile::tempdir().unwrap();
-    write_image(
-        folder.path(),
-        "s.png",
-        sketch(240, 200).into(),
-        ImageFormat::Png,
-    );
+    write_sketch(folder.path(), "s.png");
     let polyline = run(&["trace", "s.png", "--no-smooth", "-o", "-"], folder.path());
     let polyline = String::from_utf8(polyline.stdout).unwrap();
     assert!(
@@ -214,27 +184,15 @@ fn options_change_the_output_as_documented() {
         "{styled}"
     );
     let args = ["trace", "s.png", "--spacing", "-3"];
-    let output = run(&args, folder.path());
-    assert_eq!(
-        output.status.code(),
-        Some(2),
-        "{}",
-        describe(&args, &output)
-    );
+    run_expecting(2, &args, folder.path(), b"");
 }
 
 #[test]
 fn debug_writes_a_picture_of_every_stage() {
     let folder = tempfile::tempdir().unwrap();
-    write_image(
-        folder.path(),
-        "s.png",
-        sketch(240, 200).into(),
-        ImageFormat::Png,
-    );
+    write_sketch(folder.path(), "s.png");
     let args = ["trace", "s.png", "--debug", "stages", "-q"];
-    let output = run(&args, folder.path());
-    assert!(output.status.success(), "{}", describe(&args, &output));
+    run_expecting(0, &args, folder.path(), b"");
     for name in [
         "1-mask",
         "2-skeleton",
@@ -251,16 +209,10 @@ fn debug_writes_a_picture_of_every_stage() {
 #[test]
 fn render_rasterizes_the_traced_svg() {
     let folder = tempfile::tempdir().unwrap();
-    write_image(
-        folder.path(),
-        "s.png",
-        sketch(240, 200).into(),
-        ImageFormat::Png,
-    );
+    write_sketch(folder.path(), "s.png");
     assert!(run(&["trace", "s.png"], folder.path()).status.success());
     let args = ["render", "s.svg", "-o", "s-preview.png", "--scale", "2"];
-    let output = run(&args, folder.path());
-    assert!(output.status.success(), "{}", describe(&args, &output));
+    run_expecting(0, &args, folder.path(), b"");
     let preview = image::open(folder.path().join("s-preview.png"))
         .unwrap()
         .to_luma8();
@@ -278,21 +230,10 @@ fn render_rasterizes_the_traced_svg() {
 #[test]
 fn method_picks_the_crawl() {
     let folder = tempfile::tempdir().unwrap();
-    write_image(
-        folder.path(),
-        "s.png",
-        sketch(240, 200).into(),
-        ImageFormat::Png,
-    );
+    write_sketch(folder.path(), "s.png");
     let trace = |method: &str| {
         let args = ["trace", "s.png", "--method", method, "-o", "-"];
-        let output = run(&args, folder.path());
-        assert_eq!(
-            output.status.code(),
-            Some(0),
-            "{}",
-            describe(&args, &output)
-        );
+        let output = run_expecting(0, &args, folder.path(), b"");
         String::from_utf8(output.stdout).unwrap()
     };
     let strokes = trace("strokes");
