@@ -8,8 +8,8 @@ use std::sync::{mpsc, Mutex};
 use std::time::{Duration, SystemTime};
 
 use crawltrace::batch::{
-    discover_inputs, run_batch, BatchError, BatchOptions, BatchSummary, FileError, FileResult,
-    FileStatus, Shard, Unreadable,
+    discover_inputs, run_batch, BatchError, BatchOptions, BatchSummary, Discovery, FileError,
+    FileResult, FileStatus, Shard, Unreadable,
 };
 use crawltrace::files::OutputRefusal;
 use tempfile::TempDir;
@@ -117,6 +117,15 @@ fn without_recursive_only_the_top_level_is_taken() {
     assert_eq!(summary.done, 1);
 }
 
+/// The relative paths of what discovery found, in its order.
+fn relatives(discovery: &Discovery) -> Vec<PathBuf> {
+    discovery
+        .inputs
+        .iter()
+        .map(|input| input.relative.clone())
+        .collect()
+}
+
 #[test]
 fn the_glob_filters_folder_contents() {
     let input = tree(&[
@@ -125,42 +134,23 @@ fn the_glob_filters_folder_contents() {
         ("sub/scan-2.png", "2"),
         ("sub/other.jpg", "o"),
     ]);
-    let by_name = BatchOptions {
-        glob: Some("scan-*".to_string()),
-        ..recursive()
-    };
-    let discovery = discover_inputs(&[input.path().to_path_buf()], &by_name).unwrap();
-    let taken: Vec<_> = discovery
-        .inputs
-        .iter()
-        .map(|i| i.relative.clone())
-        .collect();
-    assert_eq!(
-        taken,
-        [
-            PathBuf::from("scan-1.png"),
-            Path::new("sub").join("scan-2.png")
-        ]
-    );
-    assert_eq!(discovery.excluded_by_glob, 2);
-
-    let by_path = BatchOptions {
-        glob: Some("sub/*".to_string()),
-        ..recursive()
-    };
-    let discovery = discover_inputs(&[input.path().to_path_buf()], &by_path).unwrap();
-    let taken: Vec<_> = discovery
-        .inputs
-        .iter()
-        .map(|i| i.relative.clone())
-        .collect();
-    assert_eq!(
-        taken,
-        [
-            Path::new("sub").join("other.jpg"),
-            Path::new("sub").join("scan-2.png")
-        ]
-    );
+    // By file name in any folder, or by path inside the given folder.
+    for (glob, expected, excluded) in [
+        ("scan-*", ["scan-1.png", "sub/scan-2.png"], 2),
+        ("sub/*", ["sub/other.jpg", "sub/scan-2.png"], 2),
+    ] {
+        let options = BatchOptions {
+            glob: Some(glob.to_string()),
+            ..recursive()
+        };
+        let discovery = discover_inputs(&[input.path().to_path_buf()], &options).unwrap();
+        let expected: Vec<PathBuf> = expected
+            .iter()
+            .map(|path| path.split('/').collect())
+            .collect();
+        assert_eq!(relatives(&discovery), expected, "{glob}");
+        assert_eq!(discovery.excluded_by_glob, excluded, "{glob}");
+    }
 }
 
 #[test]
@@ -711,11 +701,7 @@ fn a_symbolic_link_loop_does_not_hang() {
     std::os::unix::fs::symlink(input.path(), input.path().join("sub/back-to-top")).unwrap();
     let discovery = discover_inputs(&[input.path().to_path_buf()], &recursive()).unwrap();
 
-    let taken: Vec<_> = discovery
-        .inputs
-        .iter()
-        .map(|i| i.relative.clone())
-        .collect();
+    let taken = relatives(&discovery);
     assert_eq!(
         taken,
         [PathBuf::from("a.png"), Path::new("sub").join("b.png")]
