@@ -522,6 +522,18 @@ fn paper_limit_a_gap_over_twice_the_spacing_leaves_a_circle_open() {
     );
 }
 
+/// `count` points evenly spaced on a circle of radius 10, except the one at angle 0, which
+/// becomes a cluster of four points 1/8 of the spacing apart.
+fn circle_with_dense_cluster(count: usize) -> Vec<Point> {
+    let step = TAU / count as f64;
+    let mut points: Vec<Point> = circle_arc(count, step).into_iter().skip(1).collect();
+    for k in [-1.5, -0.5, 0.5, 1.5] {
+        let angle = k * step / 8.0;
+        points.push(Point::new(10.0 * angle.cos(), 10.0 * angle.sin()));
+    }
+    points
+}
+
 /// The paper's termination test (stop when the candidate edge is longer than the distance between
 /// the chain's extremities, once the chain has three edges) also fires on a short dense cluster:
 /// four points 1/8 of the spacing apart, on an otherwise evenly sampled circle, become a chain of
@@ -533,13 +545,7 @@ fn paper_limit_a_gap_over_twice_the_spacing_leaves_a_circle_open() {
 fn paper_limit_a_dense_cluster_splits_a_circle_into_two_open_curves() {
     let count = 60;
     let step = TAU / count as f64;
-    // Evenly spaced points, except the one at angle 0, which becomes a cluster of four.
-    let mut points: Vec<Point> = circle_arc(count, step).into_iter().skip(1).collect();
-    for k in [-1.5, -0.5, 0.5, 1.5] {
-        let angle = k * step / 8.0;
-        points.push(Point::new(10.0 * angle.cos(), 10.0 * angle.sin()));
-    }
-    let result = reconstruct(&points).unwrap();
+    let result = reconstruct(&circle_with_dense_cluster(count)).unwrap();
     let mut shapes: Vec<(bool, usize)> = result
         .curves
         .iter()
@@ -573,13 +579,7 @@ fn robust_closes_a_circle_across_a_gap_of_two_and_a_half_spacings() {
 #[test]
 fn robust_keeps_a_circle_with_a_dense_cluster_whole() {
     let count = 60;
-    let step = TAU / count as f64;
-    let mut points: Vec<Point> = circle_arc(count, step).into_iter().skip(1).collect();
-    for k in [-1.5, -0.5, 0.5, 1.5] {
-        let angle = k * step / 8.0;
-        points.push(Point::new(10.0 * angle.cos(), 10.0 * angle.sin()));
-    }
-    let result = reconstruct_robust(&points).unwrap();
+    let result = reconstruct_robust(&circle_with_dense_cluster(count)).unwrap();
     let shapes: Vec<(bool, usize)> = result
         .curves
         .iter()
