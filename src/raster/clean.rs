@@ -129,7 +129,9 @@ fn replace_small_components(mask: &mut Bitmap, ink: bool, limit: f64) -> usize {
         Connectivity::Four
     };
     let mut labels = RunLabels::new(mask, ink, connectivity);
-    let is_small = |area: u32| f64::from(area) < limit;
+    // A border component is never small, whatever the limit (an absurd pen width makes it
+    // infinite).
+    let is_small = |area: u32| area != TOUCHES_BORDER && f64::from(area) < limit;
     let flipped = labels.roots().filter(|&(_, area)| is_small(area)).count();
     if flipped == 0 || mask.width() == 0 {
         return flipped;
@@ -569,9 +571,19 @@ pub(crate) mod tests {
 
     #[test]
     fn degenerate_widths_and_masks_do_not_panic() {
-        for width in [0.0, -3.0, f64::NAN, f64::INFINITY, 1e300] {
+        // A width that is no width is taken as 0: the diagonal pair (2 px) is no lone pixel and
+        // stays. An absurdly wide pen makes it a speck.
+        for (width, kept) in [
+            (0.0, true),
+            (-3.0, true),
+            (f64::NAN, true),
+            (f64::INFINITY, true),
+            (1e300, false),
+        ] {
             let mut mask = Bitmap::from_grid("#.\n.#");
-            clean(&mut mask, width);
+            let report = clean(&mut mask, width);
+            assert_eq!(report.specks_removed, usize::from(!kept), "width {width}");
+            assert_eq!(mask.get(0, 0), kept, "width {width}");
         }
         let mut empty = Bitmap::new(0, 0);
         assert_eq!(clean(&mut empty, 3.0), CleanReport::default());
