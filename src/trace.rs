@@ -154,7 +154,7 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
     let stroke_width = raster.stroke_width;
 
     let (strokes, dots) = split_dots(
-        extract_strokes(&raster.skeleton, stroke_width),
+        extract_strokes(&raster.skeleton, &raster.mask, stroke_width),
         &raster.mask,
         stroke_width,
     );
