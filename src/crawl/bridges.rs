@@ -340,11 +340,7 @@ fn bridge_candidates(
             stroke_width,
         )
         .filter(|shape| !same_way || shape.corner.is_some())
-        .or_else(|| {
-            (a.stroke != b.stroke)
-                .then(|| cusp_shape(vertices, &a, &b, stroke_width))
-                .flatten()
-        });
+        .or_else(|| cusp_shape(vertices, &a, &b, stroke_width));
         if let Some(shape) = shape {
             candidates.push(Candidate {
                 cost: shape.cost,
@@ -486,6 +482,10 @@ fn bridge_shape(a: BridgeEnd, b: BridgeEnd, rims: f64, stroke_width: f64) -> Opt
 /// issue's contacts come as close as 0–1.5 pen widths, and a gap at the contact adds its own.
 const CUSP_MAX_SEPARATION_IN_PEN_WIDTHS: f64 = 3.0;
 
+/// The two sides of a band's tip are at most this far apart (pen widths, centre to centre), at
+/// the ends and behind them: their ink merged into one band.
+const BAND_TIP_MAX_SEPARATION_IN_PEN_WIDTHS: f64 = 1.0;
+
 /// The strokes behind a cusp's two ends must have drawn apart by this much (pen widths) at
 /// [`CUSP_LOOK_BACK_IN_PEN_WIDTHS`] back along each: lines side by side (two parallel strokes,
 /// the two sides of a finger or a leg) keep their distance and are not a cusp.
@@ -506,11 +506,19 @@ const CUSP_MAX_ANGLE_DEGREES: f64 = 45.0;
 /// it go on across their gaps, and are not sealed).
 const CUSP_COST_OFFSET: f64 = 1e9;
 
-/// DECISION (issue 9): two free ends of different strokes that point the same way, side by side
-/// within [`CUSP_MAX_SEPARATION_IN_PEN_WIDTHS`], and whose strokes draw apart behind them, are
-/// the two sides of a cusp with the pen lifted at its point (two lobes of an outline meeting, a
-/// crescent's horn): the outline turns back across the gap. Good continuation never offers this
-/// bridge, since it turns by 180°.
+/// DECISION (issue 9): two free ends that point the same way, side by side, turn into each
+/// other when the ink says the outline turns back there:
+/// - a **cusp**: ends of different strokes within [`CUSP_MAX_SEPARATION_IN_PEN_WIDTHS`] whose
+///   strokes draw apart behind them (two lobes of an outline meeting, a crescent's horn) with the
+///   pen lifted at its point;
+/// - a **band's tip**: ends within [`BAND_TIP_MAX_SEPARATION_IN_PEN_WIDTHS`] whose strokes run
+///   together behind them, closer than a pen width: the two sides of a double strand
+///   ([`crate::strokes`]) where the band ends (a spike, a leg, a tail) — of one stroke too, since
+///   a spike on a closed outline is one stroke out and back.
+///
+/// Good continuation never offers these bridges (they turn by 180°), and they come last: an end
+/// that can go on across a gap does so (the sides of a band cut by a gap go on to the band's
+/// other piece; the sides of a narrow neck go on across their gaps).
 fn cusp_shape(
     vertices: &StrokeVertices,
     a: &BridgeableEnd,
@@ -533,14 +541,15 @@ fn cusp_shape(
     let common = point_behind(vertices, a, look_back)
         .1
         .min(point_behind(vertices, b, look_back).1);
-    if common < CUSP_MIN_STROKE_IN_PEN_WIDTHS * stroke_width {
-        return None;
-    }
-    let (behind_a, behind_b) = (
-        point_behind(vertices, a, common).0,
-        point_behind(vertices, b, common).0,
-    );
-    if behind_a.distance(behind_b) < separation + CUSP_MIN_DIVERGENCE_IN_PEN_WIDTHS * stroke_width {
+    let behind = point_behind(vertices, a, common)
+        .0
+        .distance(point_behind(vertices, b, common).0);
+    let band_width = BAND_TIP_MAX_SEPARATION_IN_PEN_WIDTHS * stroke_width;
+    let band_tip = separation <= band_width && behind <= band_width && common >= stroke_width;
+    let cusp = a.stroke != b.stroke
+        && common >= CUSP_MIN_STROKE_IN_PEN_WIDTHS * stroke_width
+        && behind >= separation + CUSP_MIN_DIVERGENCE_IN_PEN_WIDTHS * stroke_width;
+    if !band_tip && !cusp {
         return None;
     }
     // Thinning ends each stroke about half a pen width inside its ink: the outline turns back

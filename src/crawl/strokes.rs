@@ -702,11 +702,24 @@ mod tests {
     }
 
     #[test]
-    fn the_point_set_methods_also_run() {
-        let strokes = skip_stroke_circle((100.0, 100.0), 60.0, 40.0, 3.0);
+    fn the_point_set_methods_also_close_a_sampled_circle() {
+        // Samples 4 px apart along eight 40° arcs with 5° (5 px) gaps all around: a dense
+        // point set on one circle, which both point-set crawls reconstruct as one closed curve
+        // through every sample.
+        let strokes = skip_stroke_circle((100.0, 100.0), 60.0, 40.0, 5.0);
+        let total: usize = strokes.iter().map(|s| s.line.points.len()).sum();
         for method in [Method::Points, Method::Paper] {
             let curves = connect(&strokes, method, 4.0, 3.0);
-            assert!(!curves.is_empty(), "{method:?}");
+            assert_eq!(curves.len(), 1, "{method:?}: {curves:?}");
+            assert!(
+                curves[0].closed,
+                "{method:?}: {:?}",
+                curves
+                    .iter()
+                    .map(|c| (c.points.len(), c.closed))
+                    .collect::<Vec<_>>()
+            );
+            assert_eq!(curves[0].points.len(), total, "{method:?}");
         }
     }
 }

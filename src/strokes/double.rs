@@ -12,7 +12,7 @@
 
 use kurbo::{Point, Vec2};
 
-use super::graph::{Branch, SkeletonGraph};
+use super::graph::{Branch, Node, SkeletonGraph};
 use crate::raster::bitmap::Bitmap;
 
 /// A band is a double strand where it is this much wider than the page's typical stroke, over a
@@ -49,6 +49,10 @@ const MAX_CROSS_WIDTH_IN_PEN_WIDTHS: f64 = 6.0;
 /// leg is several pen widths long, while the stub a contact between two curves leaves in the
 /// skeleton is short and all contact ink.
 const MIN_MEASURED_STRETCHES: usize = 2;
+
+/// The two sides of a band are at least this far (pixels) to either side of its centre line,
+/// where the band is hardly wider than one stroke (a spike's tip): two curves, not one.
+const MIN_SIDE_OFFSET_PX: f64 = 0.35;
 
 /// The step along a cross-section, in pixels: fine enough that averaging over a stretch gives
 /// sub-pixel widths.
@@ -134,11 +138,10 @@ impl SkeletonGraph {
                 continue;
             }
             let (a_is_junction, z_is_junction) = (self.degree(a) >= 3, self.degree(z) >= 3);
-            let a_is_free = self.degree(a) == 1;
-            let z_is_free = self.degree(z) == 1;
-            let is_spur = a_is_junction && z_is_free || z_is_junction && a_is_free;
-            let is_link = a_is_junction && z_is_junction;
-            if !is_spur && !is_link {
+            // DECISION: a dash on its own is not judged: skip-stroke drawings are made of them,
+            // and a dash a little wider in places (a pen pressing harder) is far more common
+            // than a band cut off on both sides.
+            if !a_is_junction && !z_is_junction {
                 continue;
             }
             let (pa, pz) = (self.nodes[a].position, self.nodes[z].position);
@@ -150,11 +153,9 @@ impl SkeletonGraph {
             if widest < DOUBLE_WIDTH_RATIO * typical || widest < typical + DOUBLE_MIN_EXCESS_PX {
                 continue;
             }
-            if is_spur {
-                self.make_u_turn(b, if a_is_junction { a } else { z });
-            } else {
-                self.add_second_side(b);
-            }
+            self.bands.push(branch.points.clone());
+            let offsets = side_offsets(&widths, typical, stretch, stroke_width);
+            self.split_into_sides(b, &offsets, stroke_width);
         }
     }
 
@@ -177,47 +178,98 @@ impl SkeletonGraph {
         Some(*median)
     }
 
-    /// Turns the spur `branch` from `junction` to a free end into a loop at the junction that
-    /// goes out to the end and comes back along the same points.
-    fn make_u_turn(&mut self, branch: usize, junction: usize) {
-        let (a, z) = self.branches[branch].nodes.expect("spurs have nodes");
-        let tip = if a == junction { z } else { a };
-        let points = &mut self.branches[branch].points;
-        if a != junction {
-            points.reverse();
+    /// Replaces the band `branch` by its two sides, offset to either side of its centre line
+    /// by `offsets` (one per point): two branches that share the band's junctions, each with
+    /// its own free end where the band ends. The sides of a band that ends turn into each other
+    /// there unless they go on across a gap ([`crate::crawl`]'s band-tip bridge).
+    fn split_into_sides(&mut self, branch: usize, offsets: &[f64], stroke_width: f64) {
+        let (a, z) = self.branches[branch].nodes.expect("bands have nodes");
+        let points = &self.branches[branch].points;
+        let span = (NORMAL_SPAN_IN_PEN_WIDTHS * stroke_width).ceil().max(2.0) as usize;
+        let last = points.len() - 1;
+        let side = |sign: f64| -> Vec<Point> {
+            (0..points.len())
+                .map(|k| {
+                    let at_junction =
+                        (k == 0 && self.degree(a) >= 3) || (k == last && self.degree(z) >= 3);
+                    let along = points[(k + span).min(last)] - points[k.saturating_sub(span)];
+                    let length = along.hypot();
+                    if at_junction || length == 0.0 {
+                        return points[k];
+                    }
+                    let normal = Vec2::new(-along.y / length, along.x / length);
+                    points[k] + normal * (sign * offsets[k])
+                })
+                .collect()
+        };
+        let (left, right) = (side(1.0), side(-1.0));
+        // The right side's ends: the band's junctions, or new free ends beside the left side's.
+        let right_node = |node: usize, position: Point, at_start: bool, graph: &mut Self| {
+            if graph.degree(node) >= 3 {
+                graph.nodes[node]
+                    .ends
+                    .push((graph.branches.len(), at_start));
+                node
+            } else {
+                graph.nodes.push(Node {
+                    position,
+                    ends: vec![(graph.branches.len(), at_start)],
+                    pruned: false,
+                });
+                graph.nodes.len() - 1
+            }
+        };
+        let right_a = right_node(a, right[0], true, self);
+        let right_z = right_node(z, right[last], false, self);
+        for (node, position) in [(a, left[0]), (z, left[last])] {
+            if self.degree(node) < 3 {
+                self.nodes[node].position = position;
+            }
         }
-        let back: Vec<Point> = points.iter().rev().skip(1).copied().collect();
-        points.extend(back);
-        let u_turn = &mut self.branches[branch];
-        u_turn.nodes = Some((junction, junction));
-        u_turn.strand_of = Some(branch);
-        u_turn.side = 1.0;
-        self.nodes[tip].ends.clear();
-        self.nodes[tip].pruned = true;
-        let ends = &mut self.nodes[junction].ends;
-        ends.retain(|&(b, _)| b != branch);
-        ends.push((branch, true));
-        ends.push((branch, false));
-    }
-
-    /// Gives the band `branch` between two junctions a copy, the other side of the outline.
-    fn add_second_side(&mut self, branch: usize) {
-        let original = &mut self.branches[branch];
-        original.strand_of = Some(branch);
-        original.side = 1.0;
-        let (a, z) = original.nodes.expect("links have nodes");
-        let copy = Branch {
-            points: original.points.clone(),
-            nodes: Some((a, z)),
+        let left_branch = &mut self.branches[branch];
+        left_branch.points = left;
+        left_branch.strand_of = Some(branch);
+        left_branch.side = 1.0;
+        self.branches.push(Branch {
+            points: right,
+            nodes: Some((right_a, right_z)),
             removed: false,
             strand_of: Some(branch),
             side: -1.0,
-        };
-        let copy_index = self.branches.len();
-        self.branches.push(copy);
-        self.nodes[a].ends.push((copy_index, true));
-        self.nodes[z].ends.push((copy_index, false));
+        });
     }
+}
+
+/// How far each side of a band lies from its centre line, per point: half of what the band is
+/// wider than one stroke (the two pens' centre lines), averaged over a stretch; where the width
+/// was not measured (next to a junction), the nearest measured value. At least
+/// [`MIN_SIDE_OFFSET_PX`], so that the two sides stay two curves, and at most a pen width.
+fn side_offsets(
+    widths: &[Option<f64>],
+    typical: f64,
+    stretch: usize,
+    stroke_width: f64,
+) -> Vec<f64> {
+    let measured: Vec<(usize, f64)> = widths
+        .iter()
+        .enumerate()
+        .filter_map(|(k, w)| w.map(|w| (k, w)))
+        .collect();
+    let half = stretch / 2;
+    (0..widths.len())
+        .map(|k| {
+            let nearest = measured.partition_point(|&(index, _)| index < k);
+            let from = nearest.saturating_sub(half);
+            let to = (nearest + half + 1).min(measured.len());
+            let window = &measured[from.min(to.saturating_sub(1))..to];
+            let mean = if window.is_empty() {
+                typical
+            } else {
+                window.iter().map(|&(_, w)| w).sum::<f64>() / window.len() as f64
+            };
+            ((mean - typical) / 2.0).clamp(MIN_SIDE_OFFSET_PX, stroke_width)
+        })
+        .collect()
 }
 
 #[cfg(test)]
@@ -255,11 +307,49 @@ mod tests {
     #[test]
     fn a_spike_whose_sides_merged_is_a_u_turn_of_the_outline() {
         // Sides 3 px apart at the base (centre to centre): one band of ink, up to 7 px wide.
+        // The outline runs out along one side of the band and back along the other: one
+        // stroke whose two free ends are the band's tip, side by side.
         let strokes = square_with_spike(1.5);
         assert_eq!(strokes.len(), 1, "{strokes:?}");
-        assert!(strokes[0].line.closed, "{strokes:?}");
+        let outline = &strokes[0];
+        assert_eq!(outline.ends, [StrokeEnd::Free, StrokeEnd::Free]);
+        let (first, last) = (outline.line.points[0], *outline.line.points.last().unwrap());
+        assert!(first.x > 124.0 && last.x > 124.0, "{first:?} {last:?}");
+        assert!(first.distance(last) <= PEN, "{first:?} {last:?}");
         let along = points_along_the_spike(&strokes);
         assert!((34..=46).contains(&along), "{along} points: out and back");
+    }
+
+    #[test]
+    fn the_traced_spike_closes_at_its_tip() {
+        let mut mask = Bitmap::new(150, 80);
+        let corners = [(10.0, 10.0), (90.0, 10.0), (90.0, 70.0), (10.0, 70.0)];
+        for k in 0..4 {
+            draw_line(&mut mask, corners[k], corners[(k + 1) % 4], PEN);
+        }
+        draw_line(&mut mask, (90.0, 38.5), (130.0, 40.0), PEN);
+        draw_line(&mut mask, (90.0, 41.5), (130.0, 40.0), PEN);
+        // A gap in the top side, so that the drawing has an ordinary pen lift too.
+        for x in 40..48 {
+            for y in 5..16 {
+                mask.set(x, y, false);
+            }
+        }
+        let image = image::GrayImage::from_fn(150, 80, |x, y| {
+            image::Luma([if mask.get(x as usize, y as usize) {
+                0
+            } else {
+                255
+            }])
+        });
+        let traced = crate::trace(
+            &image::DynamicImage::ImageLuma8(image),
+            &crate::TraceOptions::default(),
+        )
+        .expect("traces");
+        let paths = &traced.drawing.paths;
+        assert_eq!(paths.len(), 1, "{paths:?}");
+        assert!(paths[0].closed, "{paths:?}");
     }
 
     #[test]

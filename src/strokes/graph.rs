@@ -12,6 +12,8 @@ use crate::raster::bitmap::{Bitmap, NEIGHBOUR_OFFSETS};
 pub(super) struct SkeletonGraph {
     pub(super) nodes: Vec<Node>,
     pub(super) branches: Vec<Branch>,
+    /// The centre lines of the double strands found (for the `--debug` pictures).
+    pub(super) bands: Vec<Vec<Point>>,
 }
 
 #[derive(Debug)]

@@ -82,6 +82,16 @@ const SPUR_PRUNING_ROUNDS: usize = 2;
 ///
 /// The result is deterministic: strokes come in the order of their first pixel in raster order.
 pub fn extract_strokes(skeleton: &Bitmap, mask: &Bitmap, stroke_width: f64) -> Vec<Stroke> {
+    extract_strokes_and_bands(skeleton, mask, stroke_width).0
+}
+
+/// [`extract_strokes`], with the centre lines of the double strands it found (bands of ink
+/// where two stretches of an outline merged), for the `--debug` pictures.
+pub fn extract_strokes_and_bands(
+    skeleton: &Bitmap,
+    mask: &Bitmap,
+    stroke_width: f64,
+) -> (Vec<Stroke>, Vec<Polyline>) {
     let in_pixels = |pen_widths: f64, floor: f64| (pen_widths * stroke_width).max(floor);
     let mut graph = SkeletonGraph::trace(skeleton);
     // Two strokes laid side by side enclose slivers of paper; their skeleton is a small loop (a
@@ -106,7 +116,11 @@ pub fn extract_strokes(skeleton: &Bitmap, mask: &Bitmap, stroke_width: f64) -> V
     }
     // Where an outline comes back along itself, its two sides share one band of ink.
     graph.split_double_strands(mask, stroke_width);
-    graph.into_strokes(direction_scale)
+    let bands = std::mem::take(&mut graph.bands)
+        .into_iter()
+        .map(|points| Polyline::new(points, false))
+        .collect();
+    (graph.into_strokes(direction_scale), bands)
 }
 
 #[cfg(test)]
@@ -256,7 +270,8 @@ mod tests {
 
     #[test]
     fn a_closed_shape_with_a_tail_keeps_the_loop_closed() {
-        // A ring with a long tail: the junction pairs the tail with one side of the ring.
+        // A ring with a long tail: the junction pairs the tail with one side of the ring; the
+        // other side ends attached at the junction, on the same stroke, which closes the loop.
         let strokes = strokes_of(
             "
             ..............
@@ -271,5 +286,15 @@ mod tests {
         let total: usize = strokes.iter().map(|s| s.line.points.len()).sum();
         assert!(total >= 18, "{strokes:?}");
         assert!(strokes.len() <= 2, "{strokes:?}");
+        let closes_on_itself = strokes.iter().any(|stroke| {
+            stroke.ends.iter().any(|end| match end {
+                StrokeEnd::Attached(at) => stroke.line.points.iter().any(|p| p.distance(*at) < 1.5),
+                StrokeEnd::Free => false,
+            })
+        });
+        assert!(
+            closes_on_itself || strokes.iter().any(|s| s.line.closed),
+            "{strokes:?}"
+        );
     }
 }
