@@ -75,7 +75,7 @@ impl Pipeline {
         clean(&mut cleaned, stroke_width);
         let skeleton = thin(&cleaned);
         let (strokes, dots) = split_dots(
-            extract_strokes(&skeleton, stroke_width),
+            extract_strokes(&skeleton, &cleaned, stroke_width),
             &cleaned,
             stroke_width,
         );
@@ -245,7 +245,7 @@ fn stage_6_strokes_and_sample(bencher: Bencher, page: Page) {
     let tolerance = simplification_tolerance(p.stroke_width);
     bencher.bench(|| {
         let (strokes, _dots) = split_dots(
-            extract_strokes(black_box(&p.skeleton), p.stroke_width),
+            extract_strokes(black_box(&p.skeleton), &p.cleaned, p.stroke_width),
             &p.cleaned,
             p.stroke_width,
         );

@@ -18,8 +18,9 @@ pub mod strokes {
     //! Skeleton → pen strokes → samples: the skeleton traced as a graph, pruned, its junctions
     //! paired by good continuation, and every stroke sampled for the crawl.
     pub use crate::strokes::{
-        default_spacing, extract_strokes, minimum_spacing, sample_strokes,
-        simplification_tolerance, split_dots, Dot, Stroke, StrokeEnd, MIN_SPACING_PX,
+        default_spacing, extract_strokes, extract_strokes_and_bands, minimum_spacing,
+        sample_strokes, simplification_tolerance, split_dots, Dot, Stroke, StrokeEnd,
+        MIN_SPACING_PX,
     };
 }
 

@@ -26,8 +26,8 @@ use crate::raster::decode::{
 use crate::raster::density::image_dpi;
 use crate::raster::thin::thin;
 use crate::strokes::{
-    default_spacing, extract_strokes, minimum_spacing, sample_strokes, simplification_tolerance,
-    split_dots,
+    default_spacing, extract_strokes_and_bands, minimum_spacing, sample_strokes,
+    simplification_tolerance, split_dots,
 };
 
 /// What to do differently from the defaults. `TraceOptions::default()` needs no tuning.
@@ -153,11 +153,8 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
     let raster = raster_stages(image, options, &mut report, &mut watch)?;
     let stroke_width = raster.stroke_width;
 
-    let (strokes, dots) = split_dots(
-        extract_strokes(&raster.skeleton, stroke_width),
-        &raster.mask,
-        stroke_width,
-    );
+    let (strokes, bands) = extract_strokes_and_bands(&raster.skeleton, &raster.mask, stroke_width);
+    let (strokes, dots) = split_dots(strokes, &raster.mask, stroke_width);
     report.strokes = strokes.len();
     let spacing = options
         .spacing
@@ -208,6 +205,7 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
         gray,
         mask: raster.mask,
         skeleton: raster.skeleton,
+        bands,
         strokes: sampled,
         curves,
     });

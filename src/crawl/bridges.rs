@@ -339,7 +339,8 @@ fn bridge_candidates(
             rims,
             stroke_width,
         )
-        .filter(|shape| !same_way || shape.corner.is_some());
+        .filter(|shape| !same_way || shape.corner.is_some())
+        .or_else(|| cusp_shape(vertices, &a, &b, stroke_width));
         if let Some(shape) = shape {
             candidates.push(Candidate {
                 cost: shape.cost,
@@ -347,7 +348,8 @@ fn bridge_candidates(
                 a: a.vertex,
                 b: b.vertex,
                 corner: shape.corner,
-                between_free_ends: !a.attached && !b.attached,
+                // A cusp is not a pen lift across the line: not part of the typical gap.
+                between_free_ends: !a.attached && !b.attached && !shape.cusp,
             });
         }
     }
@@ -397,6 +399,8 @@ struct BridgeShape {
     /// The length of the drawn bridge (through its corner, if it has one), rim to rim.
     length: f64,
     corner: Option<Point>,
+    /// Whether the bridge turns back in a cusp ([`cusp_shape`]).
+    cusp: bool,
 }
 
 /// The way the pen most plausibly went across a gap between two ends, if any, and its cost.
@@ -434,6 +438,7 @@ fn bridge_shape(a: BridgeEnd, b: BridgeEnd, rims: f64, stroke_width: f64) -> Opt
             cost: length * (TURN_COST * (turn_a * turn_a + turn_b * turn_b)).exp(),
             length,
             corner: None,
+            cusp: false,
         }
     });
     let corner_limit = MIN_CORNER_TURN_DEGREES.to_radians();
@@ -462,6 +467,7 @@ fn bridge_shape(a: BridgeEnd, b: BridgeEnd, rims: f64, stroke_width: f64) -> Opt
                 cost: CORNER_COST_FACTOR * length,
                 length,
                 corner: Some(corner),
+                cusp: false,
             })
     } else {
         None
@@ -470,6 +476,116 @@ fn bridge_shape(a: BridgeEnd, b: BridgeEnd, rims: f64, stroke_width: f64) -> Opt
         (Some(s), Some(c)) => Some(if c.cost < s.cost { c } else { s }),
         (s, c) => s.or(c),
     }
+}
+
+/// Two ends this much apart at most (in pen widths, centre to centre) may meet in a cusp: the
+/// issue's contacts come as close as 0–1.5 pen widths, and a gap at the contact adds its own.
+const CUSP_MAX_SEPARATION_IN_PEN_WIDTHS: f64 = 3.0;
+
+/// The two sides of a band's tip are at most this far apart (pen widths, centre to centre), at
+/// the ends and behind them: their ink merged into one band.
+const BAND_TIP_MAX_SEPARATION_IN_PEN_WIDTHS: f64 = 1.0;
+
+/// The strokes behind a cusp's two ends must have drawn apart by this much (pen widths) at
+/// [`CUSP_LOOK_BACK_IN_PEN_WIDTHS`] back along each: lines side by side (two parallel strokes,
+/// the two sides of a finger or a leg) keep their distance and are not a cusp.
+const CUSP_MIN_DIVERGENCE_IN_PEN_WIDTHS: f64 = 1.0;
+
+/// How far back along each stroke (pen widths) the divergence is measured: two lobes that
+/// touch run side by side for a few pen widths before they curve apart.
+const CUSP_LOOK_BACK_IN_PEN_WIDTHS: f64 = 8.0;
+
+/// Each stroke must reach at least this far back (pen widths) for its divergence to tell.
+const CUSP_MIN_STROKE_IN_PEN_WIDTHS: f64 = 3.0;
+
+/// The two ends of a cusp point the same way within this angle (degrees).
+const CUSP_MAX_ANGLE_DEGREES: f64 = 45.0;
+
+/// DECISION: a cusp bridge costs this plus its length: more than any other bridge, so that it
+/// is only taken by ends that no continuation took (the sides of a narrow neck with gaps across
+/// it go on across their gaps, and are not sealed).
+const CUSP_COST_OFFSET: f64 = 1e9;
+
+/// DECISION (issue 9): two free ends that point the same way, side by side, turn into each
+/// other when the ink says the outline turns back there:
+/// - a **cusp**: ends of different strokes within [`CUSP_MAX_SEPARATION_IN_PEN_WIDTHS`] whose
+///   strokes draw apart behind them (two lobes of an outline meeting, a crescent's horn) with the
+///   pen lifted at its point;
+/// - a **band's tip**: ends within [`BAND_TIP_MAX_SEPARATION_IN_PEN_WIDTHS`] whose strokes run
+///   together behind them, closer than a pen width: the two sides of a double strand
+///   ([`crate::strokes`]) where the band ends (a spike, a leg, a tail) — of one stroke too, since
+///   a spike on a closed outline is one stroke out and back.
+///
+/// Good continuation never offers these bridges (they turn by 180°), and they come last: an end
+/// that can go on across a gap does so (the sides of a band cut by a gap go on to the band's
+/// other piece; the sides of a narrow neck go on across their gaps).
+fn cusp_shape(
+    vertices: &StrokeVertices,
+    a: &BridgeableEnd,
+    b: &BridgeableEnd,
+    stroke_width: f64,
+) -> Option<BridgeShape> {
+    if a.attached || b.attached {
+        return None;
+    }
+    let (ua, ub) = (a.outward?, b.outward?);
+    if ua.dot(ub) < CUSP_MAX_ANGLE_DEGREES.to_radians().cos() {
+        return None;
+    }
+    let separation = a.at.distance(b.at);
+    if separation > CUSP_MAX_SEPARATION_IN_PEN_WIDTHS * stroke_width {
+        return None;
+    }
+    // Compared at the same distance back along both strokes, as far as the shorter one reaches.
+    let look_back = CUSP_LOOK_BACK_IN_PEN_WIDTHS * stroke_width;
+    let common = point_behind(vertices, a, look_back)
+        .1
+        .min(point_behind(vertices, b, look_back).1);
+    let behind = point_behind(vertices, a, common)
+        .0
+        .distance(point_behind(vertices, b, common).0);
+    let band_width = BAND_TIP_MAX_SEPARATION_IN_PEN_WIDTHS * stroke_width;
+    let band_tip = separation <= band_width && behind <= band_width && common >= stroke_width;
+    let cusp = a.stroke != b.stroke
+        && common >= CUSP_MIN_STROKE_IN_PEN_WIDTHS * stroke_width
+        && behind >= separation + CUSP_MIN_DIVERGENCE_IN_PEN_WIDTHS * stroke_width;
+    if !band_tip && !cusp {
+        return None;
+    }
+    // Thinning ends each stroke about half a pen width inside its ink: the outline turns back
+    // that far ahead of the two ends.
+    let ahead = (ua + ub).normalize() * (stroke_width / 2.0);
+    let apex = a.at.midpoint(b.at) + ahead;
+    Some(BridgeShape {
+        cost: CUSP_COST_OFFSET + separation,
+        length: a.at.distance(apex) + apex.distance(b.at),
+        corner: Some(apex),
+        cusp: true,
+    })
+}
+
+/// The point `distance` back along the stroke of the free end `end` (along its samples, between
+/// two of them), or its far end if the stroke is shorter, with how far back that point is.
+fn point_behind(vertices: &StrokeVertices, end: &BridgeableEnd, distance: f64) -> (Point, f64) {
+    let of_stroke = &vertices.of_stroke[end.stroke];
+    let from_start = of_stroke.first() == Some(&end.vertex);
+    let mut walked = 0.0;
+    let mut previous = vertices.positions[end.vertex as usize];
+    let ordered: Box<dyn Iterator<Item = &u32>> = if from_start {
+        Box::new(of_stroke.iter())
+    } else {
+        Box::new(of_stroke.iter().rev())
+    };
+    for &v in ordered.skip(1) {
+        let p = vertices.positions[v as usize];
+        let step = previous.distance(p);
+        if walked + step >= distance && step > 0.0 {
+            return (previous.lerp(p, (distance - walked) / step), distance);
+        }
+        walked += step;
+        previous = p;
+    }
+    (previous, walked)
 }
 
 /// Where the rays from `a` along `ua` and from `b` along `ub` meet ahead of both, and the length

@@ -584,6 +584,44 @@ mod tests {
     }
 
     #[test]
+    fn two_lobes_meeting_in_a_cusp_with_the_pen_lifted_there_are_joined() {
+        // Two round lobes side by side, 5 px apart where they meet: the left one drawn over its
+        // top (in two strokes, with an ordinary gap) down to its rightmost point, the right one
+        // from its top down to its leftmost point. Both end pointing down, side by side, and
+        // draw apart behind: the outline turns back there (a cusp with the pen lifted at it).
+        let strokes = vec![
+            arc((50.0, 50.0), 30.0, 180.0, 265.0, 4.0),
+            arc((50.0, 50.0), 30.0, 275.0, 360.0, 4.0),
+            arc((115.0, 50.0), 30.0, 180.0, 270.0, 4.0),
+        ];
+        let curves = connect(&strokes, Method::Strokes, 4.0, 3.0);
+        assert_eq!(curves.len(), 1, "{curves:?}");
+        assert!(!curves[0].closed);
+        // Two lines side by side (the same ends, the same gap, the same distance) keep their
+        // distance behind the ends: they are not a cusp, and stay two curves.
+        let strokes = vec![
+            open(&[(20.0, 0.0), (24.0, 0.0), (28.0, 0.0), (32.0, 0.0)]),
+            open(&[
+                (40.0, 0.0),
+                (44.0, 0.0),
+                (48.0, 0.0),
+                (52.0, 0.0),
+                (56.0, 0.0),
+            ]),
+            open(&[
+                (20.0, 5.0),
+                (28.0, 5.0),
+                (36.0, 5.0),
+                (44.0, 5.0),
+                (52.0, 5.0),
+                (56.0, 5.0),
+            ]),
+        ];
+        let curves = connect(&strokes, Method::Strokes, 4.0, 3.0);
+        assert_eq!(curves.len(), 2, "{curves:?}");
+    }
+
+    #[test]
     fn a_t_stem_ends_on_the_bar() {
         let stem_points: Vec<(f64, f64)> = (0..11).map(|k| (10.0, 58.0 - 4.0 * k as f64)).collect();
         let mut stem = open(&stem_points);
@@ -664,11 +702,24 @@ mod tests {
     }
 
     #[test]
-    fn the_point_set_methods_also_run() {
-        let strokes = skip_stroke_circle((100.0, 100.0), 60.0, 40.0, 3.0);
+    fn the_point_set_methods_also_close_a_sampled_circle() {
+        // Samples 4 px apart along eight 40° arcs with 5° (5 px) gaps all around: a dense
+        // point set on one circle, which both point-set crawls reconstruct as one closed curve
+        // through every sample.
+        let strokes = skip_stroke_circle((100.0, 100.0), 60.0, 40.0, 5.0);
+        let total: usize = strokes.iter().map(|s| s.line.points.len()).sum();
         for method in [Method::Points, Method::Paper] {
             let curves = connect(&strokes, method, 4.0, 3.0);
-            assert!(!curves.is_empty(), "{method:?}");
+            assert_eq!(curves.len(), 1, "{method:?}: {curves:?}");
+            assert!(
+                curves[0].closed,
+                "{method:?}: {:?}",
+                curves
+                    .iter()
+                    .map(|c| (c.points.len(), c.closed))
+                    .collect::<Vec<_>>()
+            );
+            assert_eq!(curves[0].points.len(), total, "{method:?}");
         }
     }
 }

@@ -21,6 +21,8 @@ pub struct Stages {
     pub mask: Bitmap,
     /// The 1-px skeleton.
     pub skeleton: Bitmap,
+    /// The centre lines of the double strands (bands of ink where an outline's two sides merged).
+    pub bands: Vec<Polyline>,
     /// The sampled strokes.
     pub strokes: Vec<Stroke>,
     /// The reconstructed polylines before fitting.
@@ -30,6 +32,7 @@ pub struct Stages {
 const WHITE: Rgb<u8> = Rgb([255, 255, 255]);
 const INK: Rgb<u8> = Rgb([0, 0, 0]);
 const SKELETON: Rgb<u8> = Rgb([220, 20, 20]);
+const DOUBLE_STRAND: Rgb<u8> = Rgb([0, 160, 150]);
 const FREE_END: Rgb<u8> = Rgb([230, 120, 0]);
 const ATTACHED_END: Rgb<u8> = Rgb([150, 0, 200]);
 const DELAUNAY: Rgb<u8> = Rgb([200, 200, 215]);
@@ -93,7 +96,8 @@ fn mask_picture(stages: &Stages) -> RgbImage {
     })
 }
 
-/// The 1-px skeleton in red over the input.
+/// The 1-px skeleton in red over the input; double strands (bands where an outline's two sides
+/// merged) in teal.
 fn skeleton_picture(stages: &Stages) -> RgbImage {
     let mut skeleton = faded(&stages.gray);
     for y in 0..stages.skeleton.height() {
@@ -103,13 +107,28 @@ fn skeleton_picture(stages: &Stages) -> RgbImage {
             }
         }
     }
+    for band in &stages.bands {
+        for &p in &band.points {
+            let (x, y) = (p.x.floor() as u32, p.y.floor() as u32);
+            if x < skeleton.width() && y < skeleton.height() {
+                skeleton.put_pixel(x, y, DOUBLE_STRAND);
+            }
+        }
+    }
     skeleton
 }
 
 /// The samples of each stroke in a colour of its own; free pen ends orange, ends attached at a
-/// T-junction purple.
+/// T-junction purple; double strands' centre lines teal beneath.
 fn samples_picture(stages: &Stages) -> RgbImage {
     let mut samples = faded(&stages.gray);
+    // Under the samples, each double strand's centre line in teal: the two strokes along it are
+    // its two sides, going out and coming back (a U-turn where the band ends).
+    for band in &stages.bands {
+        for pair in band.points.windows(2) {
+            line(&mut samples, pair[0], pair[1], DOUBLE_STRAND);
+        }
+    }
     for (k, stroke) in stages.strokes.iter().enumerate() {
         let color = palette(k);
         let points = &stroke.line.points;

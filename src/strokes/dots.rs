@@ -94,7 +94,7 @@ mod tests {
 
     fn dots_and_strokes(grid: &str, stroke_width: f64) -> (Vec<Stroke>, Vec<Dot>) {
         let mask = Bitmap::from_grid(grid);
-        let strokes = extract_strokes(&thin(&mask), stroke_width);
+        let strokes = extract_strokes(&thin(&mask), &mask, stroke_width);
         split_dots(strokes, &mask, stroke_width)
     }
 

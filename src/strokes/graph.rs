@@ -12,6 +12,8 @@ use crate::raster::bitmap::{Bitmap, NEIGHBOUR_OFFSETS};
 pub(super) struct SkeletonGraph {
     pub(super) nodes: Vec<Node>,
     pub(super) branches: Vec<Branch>,
+    /// The centre lines of the double strands found (for the `--debug` pictures).
+    pub(super) bands: Vec<Vec<Point>>,
 }
 
 #[derive(Debug)]
@@ -30,6 +32,13 @@ pub(super) struct Branch {
     /// `None` for a loop with no node on it.
     pub(super) nodes: Option<(usize, usize)>,
     pub(super) removed: bool,
+    /// Set on the branches that trace a double strand (two stretches of outline merged into one
+    /// band of ink): the original branch's number, shared by its copy. Junctions pair such
+    /// branches without crossing ([`super::double`]).
+    pub(super) strand_of: Option<usize>,
+    /// Which side of the band this copy traces, +1 (left, walking from the start) or −1; a
+    /// U-turn goes out on the left and back on the right. 0 for a single stroke.
+    pub(super) side: f64,
 }
 
 /// The label of pixels that lie on a branch (node pixels are labelled with their node).
@@ -159,6 +168,8 @@ impl SkeletonGraph {
                     points,
                     nodes: None,
                     removed: false,
+                    strand_of: None,
+                    side: 0.0,
                 });
             }
         }
@@ -234,6 +245,8 @@ impl SkeletonGraph {
             points,
             nodes: Some((start_node, end_node)),
             removed: false,
+            strand_of: None,
+            side: 0.0,
         });
     }
 

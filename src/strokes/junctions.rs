@@ -64,6 +64,14 @@ impl SkeletonGraph {
             .iter()
             .map(|&(b, s)| self.leaving_direction(b, s, direction_scale))
             .collect();
+        let on_outline = ends
+            .iter()
+            .any(|&(b, _)| self.branches[b].strand_of.is_some());
+        if on_outline && ends.len() <= MAX_ENDS_FOR_EXACT_PAIRING {
+            let pairs = self.pairs_without_crossing(&ends, &directions);
+            record_pairs(node, &ends, &pairs, pairing);
+            return;
+        }
         // Going straight through means the two leaving directions are opposite (dot product −1).
         let mut pairs: Vec<(f64, usize, usize)> = Vec::new();
         for i in 0..ends.len() {
@@ -73,27 +81,42 @@ impl SkeletonGraph {
         }
         pairs.sort_by(|a, b| a.0.total_cmp(&b.0).then((a.1, a.2).cmp(&(b.1, b.2))));
         let mut used = vec![false; ends.len()];
-        let mut first_pair = true;
+        let mut chosen = Vec::new();
         for (_, i, j) in pairs {
             if used[i] || used[j] || ends[i].0 == ends[j].0 && ends.len() > 2 {
                 continue;
             }
             used[i] = true;
             used[j] = true;
-            pairing.partner.insert(ends[i], ends[j]);
-            pairing.partner.insert(ends[j], ends[i]);
-            if !first_pair {
-                pairing.skip_node_point.insert(ends[i]);
-                pairing.skip_node_point.insert(ends[j]);
-            }
-            first_pair = false;
+            chosen.push((i, j));
         }
-        for (k, &end) in ends.iter().enumerate() {
-            if !used[k] {
-                pairing.attached.insert(end, node.position);
-                pairing.skip_node_point.insert(end);
-            }
-        }
+        record_pairs(node, &ends, &chosen, pairing);
+    }
+
+    /// The pairing of `ends` (leaving in `directions`) at a junction on an outline whose parts
+    /// touch: no two pairs cross (an outline of a solid never crosses itself), as many ends as
+    /// possible go on, and of such pairings the straightest. The two sides of one double strand
+    /// are never paired with each other (that would close the band on itself).
+    fn pairs_without_crossing(
+        &self,
+        ends: &[BranchEnd],
+        directions: &[kurbo::Vec2],
+    ) -> Vec<(usize, usize)> {
+        let angle = |k: usize| {
+            let (b, at_start) = ends[k];
+            let side = self.branches[b].side * if at_start { 1.0 } else { -1.0 };
+            // The two sides of a band leave in the same direction; the left one lies a hair
+            // counter-clockwise of the right one.
+            directions[k].y.atan2(directions[k].x) + side * SIDE_ORDER_RADIANS
+        };
+        let mut order: Vec<usize> = (0..ends.len()).collect();
+        order.sort_by(|&i, &j| angle(i).total_cmp(&angle(j)).then(i.cmp(&j)));
+        let strand = |k: usize| self.branches[ends[k].0].strand_of;
+        let allowed = |i: usize, j: usize| {
+            ends[i].0 != ends[j].0 && (strand(i).is_none() || strand(i) != strand(j))
+        };
+        let turn = |i: usize, j: usize| 1.0 + directions[i].dot(directions[j]);
+        non_crossing_matching(&order, &allowed, &turn)
     }
 
     /// A lone skeleton pixel (a dot) is a node with no branch at all: a one-point stroke.
@@ -232,5 +255,107 @@ impl SkeletonGraph {
                 points.push(p);
             }
         }
+    }
+}
+
+/// Orders the two sides of a band that leave a junction in the same direction (radians): far
+/// below any angle between real branches.
+const SIDE_ORDER_RADIANS: f64 = 1e-6;
+
+/// Junctions with more ends than this are paired greedily even on an outline: the exact search
+/// below grows exponentially, and such junctions are blots, not contacts.
+const MAX_ENDS_FOR_EXACT_PAIRING: usize = 8;
+
+/// Writes the chosen pairs of `ends` (indices into it) into `pairing`; ends left over are
+/// attached at the node. The first pair keeps the node's point, later pairs skip it so that no
+/// two strokes share a point.
+fn record_pairs(node: &Node, ends: &[BranchEnd], pairs: &[(usize, usize)], pairing: &mut Pairing) {
+    let mut used = vec![false; ends.len()];
+    for (n, &(i, j)) in pairs.iter().enumerate() {
+        used[i] = true;
+        used[j] = true;
+        pairing.partner.insert(ends[i], ends[j]);
+        pairing.partner.insert(ends[j], ends[i]);
+        if n > 0 {
+            pairing.skip_node_point.insert(ends[i]);
+            pairing.skip_node_point.insert(ends[j]);
+        }
+    }
+    for (k, &end) in ends.iter().enumerate() {
+        if !used[k] {
+            pairing.attached.insert(end, node.position);
+            pairing.skip_node_point.insert(end);
+        }
+    }
+}
+
+/// The best matching of the items in `order` (their circular order around a junction) whose
+/// pairs do not cross: the most pairs, then the least total `cost`; only `allowed` pairs.
+/// Chords between points on a circle cross exactly when their intervals in the circular order
+/// interleave, so an interval search over the order finds it.
+fn non_crossing_matching(
+    order: &[usize],
+    allowed: &dyn Fn(usize, usize) -> bool,
+    cost: &dyn Fn(usize, usize) -> f64,
+) -> Vec<(usize, usize)> {
+    best_matching(order, allowed, cost).2
+}
+
+/// (pairs, cost, pairs) of the best non-crossing matching within `order`.
+fn best_matching(
+    order: &[usize],
+    allowed: &dyn Fn(usize, usize) -> bool,
+    cost: &dyn Fn(usize, usize) -> f64,
+) -> (usize, f64, Vec<(usize, usize)>) {
+    let Some((&first, rest)) = order.split_first() else {
+        return (0, 0.0, Vec::new());
+    };
+    // Either the first item stays unpaired…
+    let mut best = best_matching(rest, allowed, cost);
+    // …or it pairs with an item k, which splits the rest into inside and outside the chord.
+    for k in 0..rest.len() {
+        if !allowed(first, rest[k]) {
+            continue;
+        }
+        let (inside_count, inside_cost, inside) = best_matching(&rest[..k], allowed, cost);
+        let (outside_count, outside_cost, outside) = best_matching(&rest[k + 1..], allowed, cost);
+        let count = 1 + inside_count + outside_count;
+        let total = cost(first, rest[k]) + inside_cost + outside_cost;
+        if count > best.0 || count == best.0 && total < best.1 - 1e-12 {
+            let mut pairs = vec![(first, rest[k])];
+            pairs.extend(inside);
+            pairs.extend(outside);
+            best = (count, total, pairs);
+        }
+    }
+    best
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_matching_never_crosses_and_pairs_all_it_can() {
+        // Four ends around a junction, in circular order 0..4; pairing across (0–2, 1–3) is
+        // cheapest but crosses, so the best non-crossing pairing is taken.
+        let cost = |i: usize, j: usize| {
+            if (i + 2) % 4 == j || (j + 2) % 4 == i {
+                0.0
+            } else {
+                1.0
+            }
+        };
+        let pairs = non_crossing_matching(&[0, 1, 2, 3], &|_, _| true, &cost);
+        assert_eq!(pairs.len(), 2, "{pairs:?}");
+        let crossing = |(a, b): (usize, usize), (c, d): (usize, usize)| {
+            let inside = |x: usize| a.min(b) < x && x < a.max(b);
+            inside(c) != inside(d)
+        };
+        assert!(!crossing(pairs[0], pairs[1]), "{pairs:?}");
+        // Forbidden pairs are left out, even when that leaves an end over.
+        let pairs = non_crossing_matching(&[0, 1, 2], &|i, j| i + j != 1, &cost);
+        assert_eq!(pairs.len(), 1, "{pairs:?}");
+        assert_ne!(pairs[0], (0, 1));
     }
 }

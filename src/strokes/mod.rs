@@ -1,12 +1,15 @@
 //! Skeleton to pen strokes: traces a 1-px skeleton into branches between end points and junctions,
-//! prunes spurs shorter than about a stroke width, and resolves every junction into continuing
-//! strokes by good continuation (the straightest pairs of branches go on through it).
+//! prunes spurs shorter than about a stroke width, finds double strands (an outline's two sides
+//! merged into one band), and resolves every junction into continuing strokes by good
+//! continuation (the straightest pairs of branches go on through it; on a double strand, the
+//! straightest pairs that do not cross).
 //!
 //! The crawl (Parakkat & Muthuganapathy 2016) cannot represent a vertex of degree three or more
 //! (the paper's §4.3 "T-junctions" limitation); resolving junctions here, where the ink shows
 //! which branches belong together, leaves it only chains to connect.
 
 mod dots;
+mod double;
 mod graph;
 mod junctions;
 mod prune;
@@ -73,10 +76,22 @@ const SPUR_MAX_LENGTH_FLOOR_PX: f64 = 2.0;
 const SPUR_PRUNING_ROUNDS: usize = 2;
 
 /// Traces `skeleton` into strokes. `stroke_width` (the pen width in pixels) sets the longest spur
-/// that is pruned and the scale at which branch directions are measured at a junction.
+/// that is pruned and the scale at which branch directions are measured at a junction; `mask`
+/// (the cleaned ink the skeleton was thinned from) shows where a band of ink is two strokes
+/// merged (a double strand: traced out and back, or once per side).
 ///
 /// The result is deterministic: strokes come in the order of their first pixel in raster order.
-pub fn extract_strokes(skeleton: &Bitmap, stroke_width: f64) -> Vec<Stroke> {
+pub fn extract_strokes(skeleton: &Bitmap, mask: &Bitmap, stroke_width: f64) -> Vec<Stroke> {
+    extract_strokes_and_bands(skeleton, mask, stroke_width).0
+}
+
+/// [`extract_strokes`], with the centre lines of the double strands it found (bands of ink
+/// where two stretches of an outline merged), for the `--debug` pictures.
+pub fn extract_strokes_and_bands(
+    skeleton: &Bitmap,
+    mask: &Bitmap,
+    stroke_width: f64,
+) -> (Vec<Stroke>, Vec<Polyline>) {
     let in_pixels = |pen_widths: f64, floor: f64| (pen_widths * stroke_width).max(floor);
     let mut graph = SkeletonGraph::trace(skeleton);
     // Two strokes laid side by side enclose slivers of paper; their skeleton is a small loop (a
@@ -99,7 +114,13 @@ pub fn extract_strokes(skeleton: &Bitmap, stroke_width: f64) -> Vec<Stroke> {
     for _ in 0..SPUR_PRUNING_ROUNDS {
         graph.prune_spurs(spur_length);
     }
-    graph.into_strokes(direction_scale)
+    // Where an outline comes back along itself, its two sides share one band of ink.
+    graph.split_double_strands(mask, stroke_width);
+    let bands = std::mem::take(&mut graph.bands)
+        .into_iter()
+        .map(|points| Polyline::new(points, false))
+        .collect();
+    (graph.into_strokes(direction_scale), bands)
 }
 
 #[cfg(test)]
@@ -107,7 +128,10 @@ mod tests {
     use super::*;
 
     fn strokes_of(grid: &str, stroke_width: f64) -> Vec<Stroke> {
-        extract_strokes(&Bitmap::from_grid(grid), stroke_width)
+        {
+            let g = Bitmap::from_grid(grid);
+            extract_strokes(&g, &g, stroke_width)
+        }
     }
 
     #[test]
@@ -246,7 +270,8 @@ mod tests {
 
     #[test]
     fn a_closed_shape_with_a_tail_keeps_the_loop_closed() {
-        // A ring with a long tail: the junction pairs the tail with one side of the ring.
+        // A ring with a long tail: the junction pairs the tail with one side of the ring; the
+        // other side ends attached at the junction, on the same stroke, which closes the loop.
         let strokes = strokes_of(
             "
             ..............
@@ -261,5 +286,15 @@ mod tests {
         let total: usize = strokes.iter().map(|s| s.line.points.len()).sum();
         assert!(total >= 18, "{strokes:?}");
         assert!(strokes.len() <= 2, "{strokes:?}");
+        let closes_on_itself = strokes.iter().any(|stroke| {
+            stroke.ends.iter().any(|end| match end {
+                StrokeEnd::Attached(at) => stroke.line.points.iter().any(|p| p.distance(*at) < 1.5),
+                StrokeEnd::Free => false,
+            })
+        });
+        assert!(
+            closes_on_itself || strokes.iter().any(|s| s.line.closed),
+            "{strokes:?}"
+        );
     }
 }
