@@ -182,6 +182,7 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
             .filter(|t| t.is_finite() && *t >= 0.0)
             .map(|t| t.max(MIN_TOLERANCE_PX))
             .unwrap_or_else(|| default_tolerance(stroke_width)),
+        pen_width: stroke_width,
     };
     report.tolerance = fit_options.tolerance;
     let mut paths = fit_paths(&curves, &fit_options);
