@@ -42,7 +42,7 @@ pub struct TraceOptions {
     /// Smooth cubic Béziers (default) or straight segments.
     pub smooth: bool,
     /// The largest deviation of the output path from the reconstructed polyline, in pixels; by
-    /// default a quarter of the pen width (at least 0.5 px). A tolerance below 0.01 px (the
+    /// default 0.4 pen widths (at least 0.5 px). A tolerance below 0.01 px (the
     /// SVG's resolution) is raised to it.
     pub simplify: Option<f64>,
     /// Stroke width of the SVG paths; by default the measured pen width.
