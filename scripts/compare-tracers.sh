@@ -30,6 +30,8 @@ GNU_TIME=/usr/bin/time
 
 rows=()
 skipped=()
+# Wall medians by "TOOL INPUT" (TOOL: crawltrace or vtracer), for the ratio line.
+declare -A wall_of=()
 
 # measure LABEL MODE INPUT OUTPUT COMMAND...: times COMMAND, which writes the SVG OUTPUT.
 measure() {
@@ -69,6 +71,7 @@ measure() {
     paths=$({ grep -o '<path' "$output" || true; } | wc -l)
     size=$(( $(wc -c <"$output") / 1024 ))
     rows+=("| $label | $mode | $input | $wall | $sigma | $rss | $paths | $size |")
+    wall_of["${label%% *} $input"]=$wall
 }
 
 load_before=$(cut -d' ' -f1-3 /proc/loadavg)
@@ -121,6 +124,14 @@ echo
 echo "| tool | mode | input | wall median (s) | σ (s) | peak RSS (MiB) | paths | SVG (KiB) |"
 echo "|---|---|---|---:|---:|---:|---:|---:|"
 printf '%s\n' "${rows[@]}"
+for input in page.png page-scan.jpg; do
+    mine=${wall_of["crawltrace $input"]:-} theirs=${wall_of["vtracer $input"]:-}
+    if [[ -n $mine && -n $theirs ]]; then
+        echo
+        awk -v a="$mine" -v b="$theirs" -v i="$input" \
+            'BEGIN { printf "crawltrace takes %.2f× vtracer'"'"'s wall time on %s.\n", a / b, i }'
+    fi
+done
 if ((${#skipped[@]})); then
     echo
     printf -- '- skipped %s\n' "${skipped[@]}"
