@@ -1,10 +1,11 @@
 //! Fits reconstructed polylines with smooth cubic Béziers, or writes them as (optionally
 //! Douglas–Peucker simplified) straight segments. Smooth paths follow a Catmull–Rom spline
-//! through the lightly smoothed samples, fitted corner to corner ([`corners`]) by Schneider's
-//! fit-and-split (*An algorithm for automatically fitting digitized curves*, Graphics Gems,
-//! 1990). Every cubic is checked against the stretch of polyline it stands for (issue 8: it stays
-//! within the tolerance of it, and its control points inside its bounding box grown by the
-//! tolerance); one that fails is split, down to one sample interval, which is then drawn straight.
+//! through the lightly smoothed samples, fitted corner to corner (a corner turns by
+//! [`CORNER_TURN_DEGREES`] within [`CORNER_STRETCH_IN_PEN_WIDTHS`]) by Schneider's fit-and-split
+//! (*An algorithm for automatically fitting digitized curves*, Graphics Gems, 1990). Every cubic
+//! is checked against the stretch of polyline it stands for (issue 8: it stays within the
+//! tolerance of it, and its control points inside its bounding box grown by the tolerance); one
+//! that fails is split, down to one sample interval, which is then drawn straight.
 
 mod corners;
 
