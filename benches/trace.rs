@@ -85,6 +85,7 @@ impl Pipeline {
         let fit_options = FitOptions {
             smooth: true,
             tolerance: default_tolerance(stroke_width),
+            pen_width: stroke_width,
         };
         let traced = crawltrace::trace(&image, &TraceOptions::default()).expect("the page traces");
         let drawing = traced.drawing;

@@ -10,7 +10,8 @@
 # cleaned by crawltrace, since potrace reads only bitmaps; that binarization is not timed, as a
 # potrace user would threshold once and then trace.
 # Wall time: hyperfine's median when hyperfine is installed, else the median of RUNS runs timed in
-# bash. Peak memory: the largest maximum resident set size GNU time (/usr/bin/time) saw.
+# bash, every tool run once a round in turn (so load from other processes falls on all alike).
+# Peak memory: the largest maximum resident set size GNU time (/usr/bin/time) saw.
 set -euo pipefail
 
 RUNS=${RUNS:-5}
@@ -28,34 +29,18 @@ have() { command -v "$1" >/dev/null 2>&1 || [[ -x "$1" ]]; }
 GNU_TIME=/usr/bin/time
 [[ -x $GNU_TIME ]] && $GNU_TIME -f %M true >/dev/null 2>&1 || GNU_TIME=
 
-rows=()
 skipped=()
+# One entry per measured row, by index: its table cells and its command (shell-quoted).
+labels=() modes=() inputs=() rsses=() path_counts=() sizes=() commands=()
 
-# measure LABEL MODE INPUT OUTPUT COMMAND...: times COMMAND, which writes the SVG OUTPUT.
+# measure LABEL MODE INPUT OUTPUT COMMAND...: runs COMMAND, which writes the SVG OUTPUT, once to
+# check it, three times for its peak memory, and registers it for timing; `time_all` times every
+# registered command afterwards.
 measure() {
     local label=$1 mode=$2 input=$3 output=$4
     shift 4
     "$@" >/dev/null 2>&1 || { skipped+=("$label on $input: failed"); return; }
-    local wall sigma rss=0 m
-    if have hyperfine; then
-        local csv="$work/hyperfine.csv"
-        # -N: no intermediate shell, so only the tracer is timed.
-        hyperfine -N --warmup 1 --runs "$RUNS" --export-csv "$csv" -- "$(printf '%q ' "$@")" \
-            >/dev/null 2>&1
-        wall=$(awk -F, 'NR == 2 { printf "%.3f", $4 }' "$csv")
-        sigma=$(awk -F, 'NR == 2 { printf "%.3f", $3 }' "$csv")
-    else
-        local times=() start end
-        for _ in $(seq "$RUNS"); do
-            start=$(date +%s%N)
-            "$@" >/dev/null 2>&1
-            end=$(date +%s%N)
-            times+=("$(((end - start) / 1000))")
-        done
-        wall=$(printf '%s\n' "${times[@]}" | sort -n |
-            awk '{ t[NR] = $1 } END { printf "%.3f", t[int((NR + 1) / 2)] / 1e6 }')
-        sigma="–"
-    fi
+    local rss=0 m
     if [[ -n $GNU_TIME ]]; then
         for _ in 1 2 3; do
             m=$($GNU_TIME -f %M "$@" 2>&1 >/dev/null | tail -n 1)
@@ -65,10 +50,43 @@ measure() {
     else
         rss="n/a"
     fi
-    local paths size
-    paths=$({ grep -o '<path' "$output" || true; } | wc -l)
-    size=$(( $(wc -c <"$output") / 1024 ))
-    rows+=("| $label | $mode | $input | $wall | $sigma | $rss | $paths | $size |")
+    labels+=("$label") modes+=("$mode") inputs+=("$input") rsses+=("$rss")
+    path_counts+=("$({ grep -o '<path' "$output" || true; } | wc -l)")
+    sizes+=("$(($(wc -c <"$output") / 1024))")
+    commands+=("$(printf '%q ' "$@")")
+}
+
+# Wall time of every registered command: hyperfine's median and σ when hyperfine is installed;
+# else RUNS rounds in bash, each round running every command once in turn, so that load from
+# other processes falls on all tools alike, and the median of each command's RUNS times.
+walls=() sigmas=()
+time_all() {
+    local i
+    if have hyperfine; then
+        local csv="$work/hyperfine.csv"
+        for i in "${!commands[@]}"; do
+            # -N: no intermediate shell, so only the tracer is timed.
+            hyperfine -N --warmup 1 --runs "$RUNS" --export-csv "$csv" -- "${commands[i]}" \
+                >/dev/null 2>&1
+            walls[i]=$(awk -F, 'NR == 2 { printf "%.3f", $4 }' "$csv")
+            sigmas[i]=$(awk -F, 'NR == 2 { printf "%.3f", $3 }' "$csv")
+        done
+        return
+    fi
+    local times=() start end
+    for _ in $(seq "$RUNS"); do
+        for i in "${!commands[@]}"; do
+            start=$(date +%s%N)
+            eval "${commands[i]}" >/dev/null 2>&1 || true
+            end=$(date +%s%N)
+            times[i]+="$(((end - start) / 1000)) "
+        done
+    done
+    for i in "${!commands[@]}"; do
+        walls[i]=$(printf '%s\n' ${times[i]} | sort -n |
+            awk '{ t[NR] = $1 } END { printf "%.3f", t[int((NR + 1) / 2)] / 1e6 }')
+        sigmas[i]="–"
+    done
 }
 
 load_before=$(cut -d' ' -f1-3 /proc/loadavg)
@@ -115,12 +133,31 @@ else
     skipped+=("autotrace: not installed (Debian bookworm has no autotrace package)")
 fi
 
+time_all
+
 echo "Machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//');" \
     "load average $load_before before, $(cut -d' ' -f1-3 /proc/loadavg) after; $RUNS runs a row."
 echo
 echo "| tool | mode | input | wall median (s) | σ (s) | peak RSS (MiB) | paths | SVG (KiB) |"
 echo "|---|---|---|---:|---:|---:|---:|---:|"
-printf '%s\n' "${rows[@]}"
+for i in "${!commands[@]}"; do
+    echo "| ${labels[i]} | ${modes[i]} | ${inputs[i]} | ${walls[i]} | ${sigmas[i]} | ${rsses[i]} |" \
+        "${path_counts[i]} | ${sizes[i]} |"
+done
+for input in page.png page-scan.jpg; do
+    mine= theirs=
+    for i in "${!commands[@]}"; do
+        [[ ${inputs[i]} == "$input" ]] || continue
+        case ${labels[i]} in
+        crawltrace*) mine=${walls[i]} ;;
+        vtracer*) theirs=${walls[i]} ;;
+        esac
+    done
+    if [[ -n $mine && -n $theirs ]]; then
+        awk -v a="$mine" -v b="$theirs" -v i="$input" \
+            'BEGIN { printf "\ncrawltrace takes %.2f× vtracer'"'"'s wall time on %s.\n", a / b, i }'
+    fi
+done
 if ((${#skipped[@]})); then
     echo
     printf -- '- skipped %s\n' "${skipped[@]}"

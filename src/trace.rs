@@ -42,7 +42,7 @@ pub struct TraceOptions {
     /// Smooth cubic Béziers (default) or straight segments.
     pub smooth: bool,
     /// The largest deviation of the output path from the reconstructed polyline, in pixels; by
-    /// default a quarter of the pen width (at least 0.5 px). A tolerance below 0.01 px (the
+    /// default 0.4 pen widths (at least 0.5 px). A tolerance below 0.01 px (the
     /// SVG's resolution) is raised to it.
     pub simplify: Option<f64>,
     /// Stroke width of the SVG paths; by default the measured pen width.
@@ -179,6 +179,7 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
             .filter(|t| t.is_finite() && *t >= 0.0)
             .map(|t| t.max(MIN_TOLERANCE_PX))
             .unwrap_or_else(|| default_tolerance(stroke_width)),
+        pen_width: stroke_width,
     };
     report.tolerance = fit_options.tolerance;
     let mut paths = fit_paths(&curves, &fit_options);

@@ -67,7 +67,7 @@ pub fn simplify_polyline(points: &[Point], closed: bool, tolerance: f64) -> Vec<
 
 /// Which points Ramer–Douglas–Peucker keeps; a closed chain is split at the point farthest
 /// from its first point and both halves are simplified.
-fn simplification_mask(points: &[Point], closed: bool, tolerance: f64) -> Vec<bool> {
+pub(crate) fn simplification_mask(points: &[Point], closed: bool, tolerance: f64) -> Vec<bool> {
     if closed {
         // Split the loop at the point farthest from the first one, and simplify both halves.
         let far = (1..points.len())

@@ -25,6 +25,7 @@ mod cli_export;
 mod cli_hostile;
 mod cli_points;
 mod cli_trace;
+mod fit_property;
 mod golden;
 mod ground_truth;
 mod large_inputs;

@@ -161,8 +161,8 @@ pub struct TraceArgs {
     /// Write straight segments instead of smooth cubic Béziers.
     #[arg(long, overrides_with = "smooth", help_heading = "Output")]
     pub no_smooth: bool,
-    /// Largest deviation of a path from the reconstructed curve, in pixels (default: a quarter of
-    /// the pen width, at least 0.5; at least 0.01, the SVG's resolution).
+    /// Largest deviation of a path from the reconstructed curve, in pixels (default: 0.4 pen
+    /// widths, at least 0.5; at least 0.01, the SVG's resolution).
     #[arg(long, value_name = "TOL", value_parser = tolerance, help_heading = "Output")]
     pub simplify: Option<f64>,
     /// Pixels per inch of the image, for the output's physical size (default: the density the
