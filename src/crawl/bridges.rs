@@ -91,6 +91,9 @@ const MIN_CORNER_TURN_DEGREES: f64 = 35.0;
 /// them and still count as meeting at that end (a stroke drawn right up to a corner).
 const CORNER_AT_END_SLACK: f64 = 0.2;
 
+/// Two parallel ends closer than this (pen widths) are a band's two sides, not a corner.
+const BAND_SIDES_MAX_GAP_IN_PEN_WIDTHS: f64 = 0.5;
+
 /// Rays closer to parallel than this (the sine of the angle between them) do not meet.
 const MIN_RAY_CROSSING_SINE: f64 = 0.05;
 
@@ -451,10 +454,17 @@ fn bridge_shape(a: BridgeEnd, b: BridgeEnd, rims: f64, stroke_width: f64) -> Opt
         // a pen width of that end: half for its ink, half for the line's own) reaches the corner
         // there, whichever way that other end's stroke points: the stroke that reached the corner
         // first ends on it, and its direction, measured where the tip curls, is the less sure.
+        // Two ends a hair apart, pointing the same way, whose lines never meet are a band's two
+        // sides where it ends (`crate::strokes`' double strands): that is the band's tip
+        // (`cusp_shape`, taken last), not a corner.
+        let band_sides = meeting.is_none()
+            && distance < BAND_SIDES_MAX_GAP_IN_PEN_WIDTHS * stroke_width
+            && matches!((a.outward, b.outward), (Some(ua), Some(ub)) if ua.dot(ub) > 0.0);
         let end_on = |from: &BridgeEnd, to: &BridgeEnd, turn_to: f64| {
             let along = from.outward?;
             let offset = to.at - from.at;
             (turn_to > corner_limit
+                && !band_sides
                 && offset.dot(along) > 0.0
                 && offset.cross(along).abs() <= stroke_width)
                 .then_some((to.at, distance))

@@ -45,6 +45,20 @@ const NORMAL_SPAN_IN_PEN_WIDTHS: f64 = 1.0;
 /// blob of ink or a filled area is not a band.
 const MAX_CROSS_WIDTH_IN_PEN_WIDTHS: f64 = 6.0;
 
+/// What a band is judged against: the page's ink and typical stroke.
+struct BandJudge<'a> {
+    mask: &'a Bitmap,
+    /// The page's typical stroke width, as the cross-sections measure it.
+    typical: f64,
+    stroke_width: f64,
+    /// Points per stretch the width is averaged over.
+    stretch: usize,
+}
+
+/// A lone dash whose end lies this near (pen widths) to a band's tip is judged as the band's
+/// next piece: gaps in a skip-stroke sketch are a few pen widths long.
+const BAND_GAP_REACH_IN_PEN_WIDTHS: f64 = 5.0;
+
 /// A branch is judged only if this many stretches of it lie clear of junctions: a spike or a
 /// leg is several pen widths long, while the stub a contact between two curves leaves in the
 /// skeleton is short and all contact ink.
@@ -116,10 +130,9 @@ fn widest_stretch(widths: &[Option<f64>], stretch: usize) -> f64 {
 }
 
 impl SkeletonGraph {
-    /// Finds the double strands among the branches that end at a junction and rewrites them: a
-    /// band from a junction to a free end becomes a U-turn (a loop out and back at the
-    /// junction), a band between two junctions gets a copy, so that each side of the outline
-    /// has its own branch to travel.
+    /// Finds the double strands and replaces each by its two sides ([`Self::split_into_sides`]):
+    /// first among the branches that end at a junction, then among lone dashes that continue a
+    /// band across a gap (a band's piece beyond a pen lift), piece after piece.
     pub(super) fn split_double_strands(&mut self, mask: &Bitmap, stroke_width: f64) {
         if stroke_width <= 0.0 {
             return;
@@ -127,36 +140,81 @@ impl SkeletonGraph {
         let Some(typical) = self.typical_width(mask, stroke_width) else {
             return;
         };
-        let stretch = (DOUBLE_STRETCH_IN_PEN_WIDTHS * stroke_width)
-            .ceil()
-            .max(2.0) as usize;
-        let clearance = JUNCTION_CLEARANCE_IN_PEN_WIDTHS * stroke_width;
+        let judge = BandJudge {
+            mask,
+            typical,
+            stroke_width,
+            stretch: (DOUBLE_STRETCH_IN_PEN_WIDTHS * stroke_width)
+                .ceil()
+                .max(2.0) as usize,
+        };
+        let mut tips: Vec<Point> = Vec::new();
         for b in 0..self.branches.len() {
-            let branch = &self.branches[b];
-            let Some((a, z)) = branch.nodes else { continue };
-            if branch.removed || a == z {
+            let Some((a, z)) = self.branches[b].nodes else {
                 continue;
+            };
+            // DECISION: a dash on its own is not judged unless it goes on from a band's tip:
+            // skip-stroke drawings are made of dashes, and a dash a little wider in places (a
+            // pen pressing harder) is far more common than a band cut off on both sides.
+            if self.degree(a) >= 3 || self.degree(z) >= 3 {
+                tips.extend(self.split_if_double(b, &judge));
             }
-            let (a_is_junction, z_is_junction) = (self.degree(a) >= 3, self.degree(z) >= 3);
-            // DECISION: a dash on its own is not judged: skip-stroke drawings are made of them,
-            // and a dash a little wider in places (a pen pressing harder) is far more common
-            // than a band cut off on both sides.
-            if !a_is_junction && !z_is_junction {
-                continue;
-            }
-            let (pa, pz) = (self.nodes[a].position, self.nodes[z].position);
-            let widths = widths_along(mask, &branch.points, stroke_width, |p| {
-                a_is_junction && p.distance(pa) <= clearance
-                    || z_is_junction && p.distance(pz) <= clearance
-            });
-            let widest = widest_stretch(&widths, stretch);
-            if widest < DOUBLE_WIDTH_RATIO * typical || widest < typical + DOUBLE_MIN_EXCESS_PX {
-                continue;
-            }
-            self.bands.push(branch.points.clone());
-            let offsets = side_offsets(&widths, typical, stretch, stroke_width);
-            self.split_into_sides(b, &offsets, stroke_width);
         }
+        let reach = BAND_GAP_REACH_IN_PEN_WIDTHS * stroke_width;
+        while !tips.is_empty() {
+            let mut new_tips = Vec::new();
+            for b in 0..self.branches.len() {
+                let Some((a, z)) = self.branches[b].nodes else {
+                    continue;
+                };
+                let lone = self.degree(a) == 1 && self.degree(z) == 1;
+                let (pa, pz) = (self.nodes[a].position, self.nodes[z].position);
+                let goes_on = tips
+                    .iter()
+                    .any(|tip| tip.distance(pa) <= reach || tip.distance(pz) <= reach);
+                if lone && goes_on && self.branches[b].strand_of.is_none() {
+                    new_tips.extend(self.split_if_double(b, &judge));
+                }
+            }
+            tips = new_tips;
+        }
+    }
+
+    /// Splits `branch` into its two sides if it is a double strand; returns the free ends the
+    /// sides have (where the band stops), to look for its next piece beyond a gap.
+    fn split_if_double(&mut self, b: usize, judge: &BandJudge) -> Vec<Point> {
+        let branch = &self.branches[b];
+        let Some((a, z)) = branch.nodes else {
+            return Vec::new();
+        };
+        if branch.removed || a == z {
+            return Vec::new();
+        }
+        let (a_is_junction, z_is_junction) = (self.degree(a) >= 3, self.degree(z) >= 3);
+        let clearance = JUNCTION_CLEARANCE_IN_PEN_WIDTHS * judge.stroke_width;
+        let (pa, pz) = (self.nodes[a].position, self.nodes[z].position);
+        let widths = widths_along(judge.mask, &branch.points, judge.stroke_width, |p| {
+            a_is_junction && p.distance(pa) <= clearance
+                || z_is_junction && p.distance(pz) <= clearance
+        });
+        let widest = widest_stretch(&widths, judge.stretch);
+        if widest < DOUBLE_WIDTH_RATIO * judge.typical
+            || widest < judge.typical + DOUBLE_MIN_EXCESS_PX
+        {
+            return Vec::new();
+        }
+        self.bands.push(branch.points.clone());
+        let offsets = side_offsets(&widths, judge.typical, judge.stretch, judge.stroke_width);
+        let right = self.split_into_sides(b, &offsets, judge.stroke_width);
+        [b, right]
+            .into_iter()
+            .flat_map(|side| {
+                let (a, z) = self.branches[side].nodes.expect("sides have nodes");
+                [a, z]
+            })
+            .filter(|&node| self.degree(node) == 1)
+            .map(|node| self.nodes[node].position)
+            .collect()
     }
 
     /// The page's typical stroke width as the cross-sections measure it (the median over every
@@ -182,7 +240,7 @@ impl SkeletonGraph {
     /// by `offsets` (one per point): two branches that share the band's junctions, each with
     /// its own free end where the band ends. The sides of a band that ends turn into each other
     /// there unless they go on across a gap ([`crate::crawl`]'s band-tip bridge).
-    fn split_into_sides(&mut self, branch: usize, offsets: &[f64], stroke_width: f64) {
+    fn split_into_sides(&mut self, branch: usize, offsets: &[f64], stroke_width: f64) -> usize {
         let (a, z) = self.branches[branch].nodes.expect("bands have nodes");
         let points = &self.branches[branch].points;
         let span = (NORMAL_SPAN_IN_PEN_WIDTHS * stroke_width).ceil().max(2.0) as usize;
@@ -237,6 +295,7 @@ impl SkeletonGraph {
             strand_of: Some(branch),
             side: -1.0,
         });
+        self.branches.len() - 1
     }
 }
 
@@ -350,6 +409,30 @@ mod tests {
         let paths = &traced.drawing.paths;
         assert_eq!(paths.len(), 1, "{paths:?}");
         assert!(paths[0].closed, "{paths:?}");
+    }
+
+    #[test]
+    fn a_band_cut_by_a_gap_goes_on_as_a_band() {
+        // The spike's band with a pen lift right across it: its outer piece is a lone dash,
+        // judged as the band's next piece, so it too is two sides (four free ends there).
+        let mut mask = Bitmap::new(175, 80);
+        let corners = [(10.0, 10.0), (90.0, 10.0), (90.0, 70.0), (10.0, 70.0)];
+        for k in 0..4 {
+            draw_line(&mut mask, corners[k], corners[(k + 1) % 4], PEN);
+        }
+        draw_line(&mut mask, (90.0, 37.5), (160.0, 40.0), PEN);
+        draw_line(&mut mask, (90.0, 42.5), (160.0, 40.0), PEN);
+        for x in 121..125 {
+            for y in 30..50 {
+                mask.set(x, y, false);
+            }
+        }
+        let strokes = extract_strokes(&thin(&mask), &mask, PEN);
+        let outer: Vec<&Stroke> = strokes
+            .iter()
+            .filter(|s| s.line.points.iter().all(|p| p.x > 123.0))
+            .collect();
+        assert_eq!(outer.len(), 2, "{strokes:?}");
     }
 
     #[test]
