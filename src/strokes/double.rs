@@ -340,14 +340,20 @@ mod tests {
 
     const PEN: f64 = 4.0;
 
-    /// A square outline (pen 4) with a stroke sticking out of its right side, drawn as the two
-    /// lines from (90, 40 ± `half_base`) on the side to a tip at (130, 40).
-    fn square_with_spike(half_base: f64) -> Vec<Stroke> {
-        let mut mask = Bitmap::new(150, 80);
+    /// A page `width` px wide with a square outline (pen 4) from (10, 10) to (90, 70).
+    fn square_outline(width: usize) -> Bitmap {
+        let mut mask = Bitmap::new(width, 80);
         let corners = [(10.0, 10.0), (90.0, 10.0), (90.0, 70.0), (10.0, 70.0)];
         for k in 0..4 {
             draw_line(&mut mask, corners[k], corners[(k + 1) % 4], PEN);
         }
+        mask
+    }
+
+    /// A square outline (pen 4) with a stroke sticking out of its right side, drawn as the two
+    /// lines from (90, 40 ± `half_base`) on the side to a tip at (130, 40).
+    fn square_with_spike(half_base: f64) -> Vec<Stroke> {
+        let mut mask = square_outline(150);
         draw_line(&mut mask, (90.0, 40.0 - half_base), (130.0, 40.0), PEN);
         draw_line(&mut mask, (90.0, 40.0 + half_base), (130.0, 40.0), PEN);
         extract_strokes(&thin(&mask), &mask, PEN)
@@ -381,11 +387,7 @@ mod tests {
 
     #[test]
     fn the_traced_spike_closes_at_its_tip() {
-        let mut mask = Bitmap::new(150, 80);
-        let corners = [(10.0, 10.0), (90.0, 10.0), (90.0, 70.0), (10.0, 70.0)];
-        for k in 0..4 {
-            draw_line(&mut mask, corners[k], corners[(k + 1) % 4], PEN);
-        }
+        let mut mask = square_outline(150);
         draw_line(&mut mask, (90.0, 38.5), (130.0, 40.0), PEN);
         draw_line(&mut mask, (90.0, 41.5), (130.0, 40.0), PEN);
         // A gap in the top side, so that the drawing has an ordinary pen lift too.
@@ -415,11 +417,7 @@ mod tests {
     fn a_band_cut_by_a_gap_goes_on_as_a_band() {
         // The spike's band with a pen lift right across it: its outer piece is a lone dash,
         // judged as the band's next piece, so it too is two sides (four free ends there).
-        let mut mask = Bitmap::new(175, 80);
-        let corners = [(10.0, 10.0), (90.0, 10.0), (90.0, 70.0), (10.0, 70.0)];
-        for k in 0..4 {
-            draw_line(&mut mask, corners[k], corners[(k + 1) % 4], PEN);
-        }
+        let mut mask = square_outline(175);
         draw_line(&mut mask, (90.0, 37.5), (160.0, 40.0), PEN);
         draw_line(&mut mask, (90.0, 42.5), (160.0, 40.0), PEN);
         for x in 121..125 {

@@ -4,10 +4,11 @@
 
 #![allow(dead_code)]
 
+// `drawing` and `families` are also used by `fit_property`, in this same test binary.
 #[path = "../../examples/make_bench/drawing.rs"]
-mod drawing;
+pub(crate) mod drawing;
 #[path = "../../examples/make_bench/families.rs"]
-mod families;
+pub(crate) mod families;
 #[path = "../../examples/make_bench/figure.rs"]
 mod figure;
 #[path = "../../examples/make_samples/geometry.rs"]

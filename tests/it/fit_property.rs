@@ -8,29 +8,7 @@
 
 #![allow(dead_code)]
 
-#[path = "../../examples/make_bench/drawing.rs"]
-mod drawing;
-#[path = "../../examples/make_bench/families.rs"]
-mod families;
-#[path = "../../examples/make_bench/figure.rs"]
-mod figure;
-#[path = "../../examples/make_samples/geometry.rs"]
-mod geometry;
-#[path = "../../examples/make_bench/objects.rs"]
-mod objects;
-#[path = "../../examples/make_samples/paper.rs"]
-mod paper;
-#[path = "../../examples/make_bench/pen.rs"]
-mod pen;
-#[path = "../../examples/make_samples/random.rs"]
-mod random;
-#[path = "../../examples/make_bench/shapes.rs"]
-mod shapes;
-#[path = "../../examples/make_samples/sketch.rs"]
-mod sketch;
-#[path = "../../examples/make_bench/touching.rs"]
-mod touching;
-
+use super::bench_generator::{drawing, families};
 use crawltrace::stages::decode::decode_image;
 use crawltrace::stages::fit::{fit_paths, fit_segments, FitOptions, FittedSegment};
 use crawltrace::stages::geometry::Polyline;
