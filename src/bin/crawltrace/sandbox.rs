@@ -114,7 +114,7 @@ fn explain_failure(status: std::process::ExitStatus, errors: &str) -> String {
                 return "refusing to render: it needed more memory than its budget".to_string()
             }
             Some(SIGABRT) => {
-                return "the renderer crashed on it (a bug upstream in usvg or resvg; see the README's known limits)".to_string()
+                return "the renderer crashed on it (a bug upstream in usvg or resvg; see the known limits in docs/cli.md)".to_string()
             }
             _ => {}
         }
