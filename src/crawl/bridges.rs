@@ -581,12 +581,12 @@ fn point_behind(vertices: &StrokeVertices, end: &BridgeableEnd, distance: f64) -
     let from_start = of_stroke.first() == Some(&end.vertex);
     let mut walked = 0.0;
     let mut previous = vertices.positions[end.vertex as usize];
-    let ordered: Box<dyn Iterator<Item = &u32>> = if from_start {
-        Box::new(of_stroke.iter())
-    } else {
-        Box::new(of_stroke.iter().rev())
-    };
-    for &v in ordered.skip(1) {
+    for k in 1..of_stroke.len() {
+        let v = of_stroke[if from_start {
+            k
+        } else {
+            of_stroke.len() - 1 - k
+        }];
         let p = vertices.positions[v as usize];
         let step = previous.distance(p);
         if walked + step >= distance && step > 0.0 {

@@ -1,11 +1,11 @@
 //! Double strands: where an outline comes back within about a pen width of itself (a narrow
 //! spike, a leg, a tail, two runs side by side), the ink of its two stretches merges into one
 //! band and the skeleton keeps one centre line for two curves. This stage measures the ink's
-//! width across every branch, finds the bands clearly wider than one stroke, and makes the
-//! skeleton graph say what a person tracing the outline sees: a band that ends is a U-turn (the
-//! outline goes out along it and comes back), a band between two junctions is travelled twice,
-//! once by each side. Junctions then pair such branches without crossing
-//! ([`super::junctions`]).
+//! width across the branches, finds the bands clearly wider than one stroke, and replaces each
+//! by its two sides, so that the skeleton graph says what a person tracing the outline sees: a
+//! band that ends is where the outline turns back (its sides' two free ends meet there, unless
+//! they go on across a gap), a band between two junctions is travelled once by each side.
+//! Junctions then pair such branches without crossing ([`super::junctions`]).
 //!
 //! The paper (Parakkat & Muthuganapathy 2016) reconstructs a curve from samples only and has no
 //! notion of ink width; this stage is ours (issue 9, "outlines whose parts touch").
@@ -46,8 +46,10 @@ const NORMAL_SPAN_IN_PEN_WIDTHS: f64 = 1.0;
 const MAX_CROSS_WIDTH_IN_PEN_WIDTHS: f64 = 6.0;
 
 /// What a band is judged against: the page's ink and typical stroke.
-struct BandJudge<'a> {
-    mask: &'a Bitmap,
+struct BandJudge {
+    /// The ink widths across each branch's points, by branch, measured once before any branch
+    /// is split (a split changes only the branch it splits, and adds its sides after these).
+    widths: Vec<Vec<Option<f64>>>,
     /// The page's typical stroke width, as the cross-sections measure it.
     typical: f64,
     stroke_width: f64,
@@ -89,28 +91,24 @@ fn cross_width(mask: &Bitmap, point: Point, normal: Vec2, limit: f64) -> f64 {
     width
 }
 
-/// The ink width across each point of `points` (skeleton pixel centres along a branch), or
-/// `None` where `skip` says not to measure.
-fn widths_along(
-    mask: &Bitmap,
-    points: &[Point],
-    stroke_width: f64,
-    skip: impl Fn(Point) -> bool,
-) -> Vec<Option<f64>> {
+/// The unit normal (left of the direction of travel) at `points[k]`, from the points
+/// [`NORMAL_SPAN_IN_PEN_WIDTHS`] before and after it; `None` where they coincide.
+fn normal_at(points: &[Point], k: usize, stroke_width: f64) -> Option<Vec2> {
     let span = (NORMAL_SPAN_IN_PEN_WIDTHS * stroke_width).ceil().max(2.0) as usize;
-    let limit = MAX_CROSS_WIDTH_IN_PEN_WIDTHS * stroke_width;
     let last = points.len().saturating_sub(1);
+    let along = points[(k + span).min(last)] - points[k.saturating_sub(span)];
+    let length = along.hypot();
+    (length > 0.0).then(|| Vec2::new(-along.y / length, along.x / length))
+}
+
+/// The ink width across each point of `points` (skeleton pixel centres along a branch); `None`
+/// where the direction is undefined.
+fn widths_along(mask: &Bitmap, points: &[Point], stroke_width: f64) -> Vec<Option<f64>> {
+    let limit = MAX_CROSS_WIDTH_IN_PEN_WIDTHS * stroke_width;
     (0..points.len())
         .map(|k| {
-            if skip(points[k]) {
-                return None;
-            }
-            let along = points[(k + span).min(last)] - points[k.saturating_sub(span)];
-            let length = along.hypot();
-            (length > 0.0).then(|| {
-                let normal = Vec2::new(-along.y / length, along.x / length);
-                cross_width(mask, points[k], normal, limit)
-            })
+            normal_at(points, k, stroke_width)
+                .map(|normal| cross_width(mask, points[k], normal, limit))
         })
         .collect()
 }
@@ -137,11 +135,22 @@ impl SkeletonGraph {
         if stroke_width <= 0.0 {
             return;
         }
-        let Some(typical) = self.typical_width(mask, stroke_width) else {
+        let widths: Vec<Vec<Option<f64>>> = self
+            .branches
+            .iter()
+            .map(|branch| {
+                if branch.removed {
+                    Vec::new()
+                } else {
+                    widths_along(mask, &branch.points, stroke_width)
+                }
+            })
+            .collect();
+        let Some(typical) = typical_width(&widths) else {
             return;
         };
         let judge = BandJudge {
-            mask,
+            widths,
             typical,
             stroke_width,
             stretch: (DOUBLE_STRETCH_IN_PEN_WIDTHS * stroke_width)
@@ -193,10 +202,17 @@ impl SkeletonGraph {
         let (a_is_junction, z_is_junction) = (self.degree(a) >= 3, self.degree(z) >= 3);
         let clearance = JUNCTION_CLEARANCE_IN_PEN_WIDTHS * judge.stroke_width;
         let (pa, pz) = (self.nodes[a].position, self.nodes[z].position);
-        let widths = widths_along(judge.mask, &branch.points, judge.stroke_width, |p| {
-            a_is_junction && p.distance(pa) <= clearance
-                || z_is_junction && p.distance(pz) <= clearance
-        });
+        // Near a junction the other branches' ink widens the cross-section: not measured there.
+        let widths: Vec<Option<f64>> = branch
+            .points
+            .iter()
+            .zip(&judge.widths[b])
+            .map(|(p, &width)| {
+                let near_junction = a_is_junction && p.distance(pa) <= clearance
+                    || z_is_junction && p.distance(pz) <= clearance;
+                width.filter(|_| !near_junction)
+            })
+            .collect();
         let widest = widest_stretch(&widths, judge.stretch);
         if widest < DOUBLE_WIDTH_RATIO * judge.typical
             || widest < judge.typical + DOUBLE_MIN_EXCESS_PX
@@ -217,25 +233,6 @@ impl SkeletonGraph {
             .collect()
     }
 
-    /// The page's typical stroke width as the cross-sections measure it (the median over every
-    /// branch point): the same measure as the bands are judged by, so that its pixel bias cancels.
-    fn typical_width(&self, mask: &Bitmap, stroke_width: f64) -> Option<f64> {
-        let mut widths: Vec<f64> = self
-            .branches
-            .iter()
-            .filter(|branch| !branch.removed)
-            .flat_map(|branch| widths_along(mask, &branch.points, stroke_width, |_| false))
-            .flatten()
-            .filter(|&w| w > 0.0)
-            .collect();
-        if widths.is_empty() {
-            return None;
-        }
-        let middle = widths.len() / 2;
-        let (_, median, _) = widths.select_nth_unstable_by(middle, f64::total_cmp);
-        Some(*median)
-    }
-
     /// Replaces the band `branch` by its two sides, offset to either side of its centre line
     /// by `offsets` (one per point): two branches that share the band's junctions, each with
     /// its own free end where the band ends. The sides of a band that ends turn into each other
@@ -243,20 +240,16 @@ impl SkeletonGraph {
     fn split_into_sides(&mut self, branch: usize, offsets: &[f64], stroke_width: f64) -> usize {
         let (a, z) = self.branches[branch].nodes.expect("bands have nodes");
         let points = &self.branches[branch].points;
-        let span = (NORMAL_SPAN_IN_PEN_WIDTHS * stroke_width).ceil().max(2.0) as usize;
         let last = points.len() - 1;
         let side = |sign: f64| -> Vec<Point> {
             (0..points.len())
                 .map(|k| {
                     let at_junction =
                         (k == 0 && self.degree(a) >= 3) || (k == last && self.degree(z) >= 3);
-                    let along = points[(k + span).min(last)] - points[k.saturating_sub(span)];
-                    let length = along.hypot();
-                    if at_junction || length == 0.0 {
-                        return points[k];
+                    match normal_at(points, k, stroke_width) {
+                        Some(normal) if !at_junction => points[k] + normal * (sign * offsets[k]),
+                        _ => points[k],
                     }
-                    let normal = Vec2::new(-along.y / length, along.x / length);
-                    points[k] + normal * (sign * offsets[k])
                 })
                 .collect()
         };
@@ -297,6 +290,24 @@ impl SkeletonGraph {
         });
         self.branches.len() - 1
     }
+}
+
+/// The page's typical stroke width as the cross-sections measure it (the median over every
+/// branch point): the same measure as the bands are judged by, so that its pixel bias cancels.
+fn typical_width(widths: &[Vec<Option<f64>>]) -> Option<f64> {
+    let mut widths: Vec<f64> = widths
+        .iter()
+        .flatten()
+        .flatten()
+        .copied()
+        .filter(|&w| w > 0.0)
+        .collect();
+    if widths.is_empty() {
+        return None;
+    }
+    let middle = widths.len() / 2;
+    let (_, median, _) = widths.select_nth_unstable_by(middle, f64::total_cmp);
+    Some(*median)
 }
 
 /// How far each side of a band lies from its centre line, per point: half of what the band is

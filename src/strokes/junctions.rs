@@ -301,7 +301,8 @@ fn non_crossing_matching(
     best_matching(order, allowed, cost).2
 }
 
-/// (pairs, cost, pairs) of the best non-crossing matching within `order`.
+/// The best non-crossing matching within `order`: its number of pairs, its total cost, and the
+/// pairs.
 fn best_matching(
     order: &[usize],
     allowed: &dyn Fn(usize, usize) -> bool,
