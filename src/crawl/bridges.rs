@@ -1,13 +1,17 @@
 //! Gap bridges: which stroke ends are joined across a pen lift. Free ends (the pen's lift-off
 //! points) and T-ends (a stroke that ran into another one, taken at the junction point) are
 //! matched greedily from the cheapest bridge (shortest, straightest), each end used once, with
-//! bridges much longer than the drawing's typical gap left out.
+//! bridges much longer than the drawing's typical gap left out. A free end may also go on
+//! through a corner of another stroke where a line was broken at a crossing
+//! ([`super::through`]).
 
-use std::collections::HashMap;
+use std::collections::hash_map::Entry;
+use std::collections::{HashMap, HashSet};
 
 use kurbo::{Point, Vec2};
 
 use super::strokes::StrokeVertices;
+use super::through::{through_candidates, ThroughCorner};
 use crate::geometry::polyline::polyline_length;
 use crate::geometry::UnionFind;
 use crate::strokes::MIN_LOOP_SAMPLES;
@@ -37,6 +41,9 @@ struct Candidate {
     corner: Option<Point>,
     /// Whether both ends are free ends (a pen lift, which the typical gap is measured on).
     between_free_ends: bool,
+    /// For a bridge from the free end `a` on through a corner `b` of another stroke
+    /// ([`super::through`]): the corner.
+    through: Option<ThroughCorner>,
 }
 
 /// An accepted bridge: its two end vertices and the points the curve goes through between them,
@@ -46,6 +53,15 @@ pub(super) struct Bridge {
     pub(super) a: u32,
     pub(super) b: u32,
     pub(super) via: Vec<Point>,
+}
+
+/// The bridges chosen, and the stroke edges they cut: a bridge through a corner opens the corner,
+/// and the arm it does not go on into ends at the corner point (`cuts`: the arm's vertex next to
+/// the corner, and the corner's vertex).
+#[derive(Debug, Default)]
+pub(super) struct GapBridges {
+    pub(super) bridges: Vec<Bridge>,
+    pub(super) cuts: Vec<(u32, u32)>,
 }
 
 /// Chooses the bridges across pen lifts: pairs of ends at most a few typical gaps apart, matched
@@ -115,7 +131,7 @@ pub(super) fn match_gap_bridges(
     ends: &[BridgeableEnd],
     spacing: f64,
     stroke_width: f64,
-) -> Vec<Bridge> {
+) -> GapBridges {
     // No bridge can be longer than the widest loop-closing gap allowed with the largest typical
     // gap, rim to rim, plus the pen width thinning took off the two ends.
     let reach = LOOP_GAP_MAX_IN_TYPICAL_GAPS * TYPICAL_GAP_MAX_IN_SPACINGS * spacing
@@ -125,7 +141,7 @@ pub(super) fn match_gap_bridges(
                 .dot_radius
                 .values()
                 .fold(0.0, |a: f64, &b| a.max(b));
-    let candidates = bridge_candidates(vertices, ends, reach, stroke_width);
+    let candidates = bridge_candidates(vertices, ends, reach, spacing, stroke_width);
     let matching = Matching::new(vertices, ends, &candidates, stroke_width);
     // First pass: the drawing's typical gap. Second pass: the matching itself, with overlong
     // bridges out of the running, so that they cannot take an end from a real gap.
@@ -135,15 +151,14 @@ pub(super) fn match_gap_bridges(
         .filter(|m| m.between_free_ends)
         .map(|m| matching.ink_gap(m))
         .collect();
-    if gaps.is_empty() {
-        return Vec::new();
-    }
     gaps.sort_by(f64::total_cmp);
     // The first matching bridges openings too (a "( )", a mouth); gaps longer than an ordinary
-    // bridge may be, against the plain median, are not part of the hand's typical gap.
-    let median = gaps[gaps.len() / 2];
+    // bridge may be, against the plain median, are not part of the hand's typical gap. With no
+    // gap between free ends at all (every end taken through a corner or onto a T), the
+    // smallest typical gap.
+    let median = gaps.get(gaps.len() / 2).copied().unwrap_or(0.0);
     gaps.retain(|&gap| gap <= BRIDGE_MAX_IN_TYPICAL_GAPS * median);
-    let typical_gap = gaps[gaps.len() / 2].clamp(
+    let typical_gap = gaps.get(gaps.len() / 2).copied().unwrap_or(0.0).clamp(
         TYPICAL_GAP_MIN_IN_SPACINGS * spacing,
         TYPICAL_GAP_MAX_IN_SPACINGS * spacing,
     );
@@ -152,21 +167,40 @@ pub(super) fn match_gap_bridges(
         .filter(|end| end.attached)
         .map(|end| (end.vertex, end.at))
         .collect();
-    matching
-        .run(Some(typical_gap))
-        .into_iter()
-        .map(|m| {
-            let mut via: Vec<Point> = junction_of.get(&m.a).copied().into_iter().collect();
-            via.extend(m.corner);
-            via.extend(junction_of.get(&m.b).copied());
-            via.dedup();
-            Bridge {
-                a: m.a,
-                b: m.b,
-                via,
+    let mut result = GapBridges::default();
+    // A second line through an opened corner (the other stroke of an "X" broken at its
+    // crossing) goes on into the arm the first one cut: from the end to that arm's vertex,
+    // through the corner.
+    let mut opened: HashSet<u32> = HashSet::new();
+    for m in matching.run(Some(typical_gap)) {
+        if let Some(through) = m.through {
+            if opened.insert(through.corner) {
+                result.cuts.push((through.cut, through.corner));
+                result.bridges.push(Bridge {
+                    a: m.a,
+                    b: m.b,
+                    via: Vec::new(),
+                });
+            } else {
+                result.bridges.push(Bridge {
+                    a: m.a,
+                    b: through.keep,
+                    via: vec![vertices.positions[through.corner as usize]],
+                });
             }
-        })
-        .collect()
+            continue;
+        }
+        let mut via: Vec<Point> = junction_of.get(&m.a).copied().into_iter().collect();
+        via.extend(m.corner);
+        via.extend(junction_of.get(&m.b).copied());
+        via.dedup();
+        result.bridges.push(Bridge {
+            a: m.a,
+            b: m.b,
+            via,
+        });
+    }
+    result
 }
 
 /// The greedy matching of ends, cheapest bridge first.
@@ -213,7 +247,8 @@ impl<'a> Matching<'a> {
         let mut groups = StrokeGroups::new(self.vertices);
         let mut matched: Vec<&Candidate> = Vec::new();
         let mut remaining = self.slots.clone();
-        let mut taken = vec![false; self.candidates.len()];
+        let mut pending: Vec<usize> = (0..self.candidates.len()).collect();
+        let mut corners = OpenedCorners::default();
         // Whether a bridge closes a loop depends on the bridges taken before it, and the gap that
         // closes an outline is often its widest, so it comes last in cost order: rejected
         // candidates get another look once the cheaper bridges have joined their strokes.
@@ -223,7 +258,8 @@ impl<'a> Matching<'a> {
                 typical_gap,
                 &mut groups,
                 &mut remaining,
-                &mut taken,
+                &mut pending,
+                &mut corners,
                 &mut matched,
             );
             if matched.len() == matched_before || typical_gap.is_none() {
@@ -232,22 +268,38 @@ impl<'a> Matching<'a> {
         }
     }
 
-    /// One greedy pass over the candidates not taken yet, cheapest first.
+    /// One greedy pass over the `pending` candidates, cheapest first. Those that can never be
+    /// taken (an end used up, a corner opened the other way, a gap too long for any bridge) leave
+    /// `pending`, so that the passes after the first look only at the few that still may: on a
+    /// page of noise there are millions of candidates.
     fn match_pass(
         &self,
         typical_gap: Option<f64>,
         groups: &mut StrokeGroups,
         remaining: &mut HashMap<u32, u8>,
-        taken: &mut [bool],
+        pending: &mut Vec<usize>,
+        corners: &mut OpenedCorners,
         matched: &mut Vec<&'a Candidate>,
     ) {
-        for (index, candidate) in self.candidates.iter().enumerate() {
+        let mut still_pending = Vec::new();
+        for &index in pending.iter() {
+            let candidate = &self.candidates[index];
             let (length, a, b) = (candidate.length, candidate.a, candidate.b);
-            // Each pair is a candidate once: `dedup` removed the copy a two-slot dot makes.
-            if taken[index] || remaining[&a] == 0 || remaining[&b] == 0 {
+            if remaining[&a] == 0 {
                 continue;
             }
-            let (stroke_a, stroke_b) = (self.stroke_of[&a], self.stroke_of[&b]);
+            let stroke_b = match candidate.through {
+                Some(through) if corners.may_open(&through) => through.stroke,
+                Some(_) => continue,
+                None if remaining[&b] == 0 => continue,
+                None => self.stroke_of[&b],
+            };
+            if typical_gap.is_some_and(|typical| {
+                self.ink_gap(candidate) > LOOP_GAP_MAX_IN_TYPICAL_GAPS * typical
+            }) {
+                continue;
+            }
+            let stroke_a = self.stroke_of[&a];
             let closes_loop = groups.same(stroke_a, stroke_b);
             let loop_length = groups.length(stroke_a) + length;
             // DECISION: a bridge that closes a loop must be short next to the loop: at most a
@@ -255,6 +307,7 @@ impl<'a> Matching<'a> {
             // interrupts; an opening as wide as a quarter of the curve is drawn on purpose (an
             // open mouth, a "C"), and tiny loops of a few dashes are no shapes at all.
             if closes_loop && length > LOOP_GAP_MAX_SHARE * loop_length {
+                still_pending.push(index);
                 continue;
             }
             if let Some(typical) = typical_gap {
@@ -264,15 +317,19 @@ impl<'a> Matching<'a> {
                         && gap <= LOOP_GAP_MAX_IN_TYPICAL_GAPS * typical
                         && self.closes_clearly(candidate, loop_length, remaining));
                 if !within_limit {
+                    still_pending.push(index);
                     continue;
                 }
             }
             groups.join(stroke_a, stroke_b, length);
             *remaining.get_mut(&a).expect("free end") -= 1;
-            *remaining.get_mut(&b).expect("free end") -= 1;
-            taken[index] = true;
+            match candidate.through {
+                Some(through) => corners.open(&through),
+                None => *remaining.get_mut(&b).expect("free end") -= 1,
+            }
             matched.push(candidate);
         }
+        *pending = still_pending;
     }
 
     /// DECISION: the gap where the pen comes back to where it started is often the widest of an
@@ -305,11 +362,44 @@ impl<'a> Matching<'a> {
     }
 }
 
-/// Every pair of ends at most `reach` apart that may be a bridge, cheapest first, each pair once.
+/// The corners opened by bridges through them ([`super::through`]), with the arm each goes on
+/// into.
+#[derive(Default)]
+struct OpenedCorners {
+    kept_arm: HashMap<u32, u32>,
+    /// Corners whose cut arm has been taken up by a second line too.
+    full: HashSet<u32>,
+}
+
+impl OpenedCorners {
+    /// A corner may be opened once, and then taken once more by a line going on into the arm
+    /// the first one cut.
+    fn may_open(&self, through: &ThroughCorner) -> bool {
+        match self.kept_arm.get(&through.corner) {
+            None => true,
+            Some(&kept) => kept != through.keep && !self.full.contains(&through.corner),
+        }
+    }
+
+    fn open(&mut self, through: &ThroughCorner) {
+        match self.kept_arm.entry(through.corner) {
+            Entry::Vacant(first) => {
+                first.insert(through.keep);
+            }
+            Entry::Occupied(_) => {
+                self.full.insert(through.corner);
+            }
+        }
+    }
+}
+
+/// Every pair of ends at most `reach` apart that may be a bridge, and every bridge from a free
+/// end through a corner, cheapest first, each pair once.
 fn bridge_candidates(
     vertices: &StrokeVertices,
     ends: &[BridgeableEnd],
     reach: f64,
+    spacing: f64,
     stroke_width: f64,
 ) -> Vec<Candidate> {
     let mut candidates: Vec<Candidate> = Vec::new();
@@ -353,9 +443,23 @@ fn bridge_candidates(
                 corner: shape.corner,
                 // A cusp is not a pen lift across the line: not part of the typical gap.
                 between_free_ends: !a.attached && !b.attached && !shape.cusp,
+                through: None,
             });
         }
     }
+    candidates.extend(
+        through_candidates(vertices, ends, reach, spacing, stroke_width, TURN_COST)
+            .into_iter()
+            .map(|c| Candidate {
+                cost: c.cost,
+                length: c.length,
+                a: c.end,
+                b: c.through.corner,
+                corner: None,
+                between_free_ends: false,
+                through: Some(c.through),
+            }),
+    );
     candidates.sort_by(|x, y| {
         x.cost
             .total_cmp(&y.cost)

@@ -13,6 +13,7 @@ pub mod neighbours;
 pub mod reconstruct;
 pub mod robust;
 pub mod strokes;
+mod through;
 pub mod tips;
 mod triangulation;
 

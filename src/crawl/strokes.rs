@@ -16,7 +16,7 @@ use std::collections::{HashMap, HashSet, VecDeque};
 use kurbo::{Point, Vec2};
 
 use super::algorithm::Chain;
-use super::bridges::{match_gap_bridges, BridgeableEnd};
+use super::bridges::{match_gap_bridges, BridgeableEnd, GapBridges};
 use super::reconstruct::{self, canonical_orientation, Reconstruction};
 use super::ReconstructError;
 use crate::geometry::polyline::polyline_length;
@@ -221,6 +221,8 @@ pub(super) struct StrokeVertices {
     pub(super) positions: Vec<Point>,
     /// The vertices of each stroke, in order along it.
     pub(super) of_stroke: Vec<Vec<u32>>,
+    /// Whether each stroke is closed (its last vertex joined to its first).
+    pub(super) closed: Vec<bool>,
     /// For a dot, half the length of the dash it stands for: gaps are measured from its rim.
     pub(super) dot_radius: HashMap<u32, f64>,
     /// For a dot, the two ends of the dash it stands for, to draw it back in the output.
@@ -270,6 +272,9 @@ impl StrokeVertices {
                     }
                 }
             }
+            vertices
+                .closed
+                .push(stroke.line.closed && of_stroke.len() > 2);
             vertices.of_stroke.push(of_stroke);
         }
         vertices
@@ -336,13 +341,21 @@ pub fn connect_strokes(strokes: &[Stroke], spacing: f64, stroke_width: f64) -> V
     let positions = &vertices.positions;
     let StrokeGraph { mut edges, ends } =
         StrokeGraph::new(strokes, &vertices, spacing, stroke_width);
-    let bridges = match_gap_bridges(&vertices, &ends, spacing, stroke_width);
+    let GapBridges { bridges, cuts } = match_gap_bridges(&vertices, &ends, spacing, stroke_width);
+    // An arm cut off an opened corner ends on the corner point, like a T-end.
+    let cut: HashSet<(u32, u32)> = cuts.iter().flat_map(|&(a, b)| [(a, b), (b, a)]).collect();
+    edges.retain(|edge| !cut.contains(edge));
     let bridged: HashSet<u32> = bridges.iter().flat_map(|b| [b.a, b.b]).collect();
     // T-ends that took no bridge end on the stroke they ran into.
     let attachment: HashMap<u32, Point> = ends
         .iter()
         .filter(|end| end.attached && !bridged.contains(&end.vertex))
         .map(|end| (end.vertex, end.at))
+        .chain(
+            cuts.iter()
+                .filter(|(arm, _)| !bridged.contains(arm))
+                .map(|&(arm, corner)| (arm, positions[corner as usize])),
+        )
         .collect();
     edges.extend(bridges.iter().map(|bridge| (bridge.a, bridge.b)));
     let vias: HashMap<(u32, u32), Vec<Point>> = bridges
@@ -693,6 +706,105 @@ mod tests {
             .map(|p| p.y)
             .fold(f64::MAX, f64::min);
         assert!((highest - tip.1).abs() < 3.0, "the tip is at {highest}");
+    }
+
+    /// Points every 4 px along a straight line from `from` to `to`.
+    fn line(from: (f64, f64), to: (f64, f64)) -> Vec<(f64, f64)> {
+        let length = Point::from(from).distance(Point::from(to));
+        let count = (length / 4.0).ceil().max(1.0) as usize;
+        (0..=count)
+            .map(|k| {
+                let t = k as f64 / count as f64;
+                (from.0 + (to.0 - from.0) * t, from.1 + (to.1 - from.1) * t)
+            })
+            .collect()
+    }
+
+    /// Whether some curve runs from near `from` to near `to` (either way), within 2 px of the
+    /// straight line between them all along.
+    fn has_straight_curve(curves: &[Polyline], from: (f64, f64), to: (f64, f64)) -> bool {
+        let (from, to) = (Point::from(from), Point::from(to));
+        let axis = kurbo::Line::new(from, to);
+        curves.iter().any(|curve| {
+            let (first, last) = (curve.points[0], curve.points[curve.points.len() - 1]);
+            let ends_match = (first.distance(from) < 4.0 && last.distance(to) < 4.0)
+                || (first.distance(to) < 4.0 && last.distance(from) < 4.0);
+            ends_match
+                && curve
+                    .points
+                    .iter()
+                    .all(|&p| kurbo::ParamCurveNearest::nearest(&axis, p, 1e-6).distance_sq < 4.0)
+        })
+    }
+
+    #[test]
+    fn a_stem_broken_just_below_a_crossbar_goes_on_through_the_corner() {
+        // An "H"'s left stem with a gap just below the crossbar: the skeleton joins the upper
+        // stem and the crossbar in an "L", and the lower stem ends 8 px below its corner,
+        // pointing at it. The stem goes on through; the crossbar ends on it.
+        let mut upper_and_bar = line((0.0, 0.0), (0.0, 40.0));
+        upper_and_bar.extend(line((0.0, 40.0), (40.0, 40.0)).into_iter().skip(1));
+        let strokes = vec![
+            open(&upper_and_bar),
+            open(&line((0.0, 48.0), (0.0, 68.0))),
+            open(&line((0.0, 74.0), (0.0, 94.0))),
+        ];
+        let curves = connect(&strokes, Method::Strokes, 4.0, 3.0);
+        assert_eq!(curves.len(), 2, "{curves:?}");
+        assert!(
+            has_straight_curve(&curves, (0.0, 0.0), (0.0, 94.0)),
+            "{curves:?}"
+        );
+        assert!(
+            has_straight_curve(&curves, (0.0, 40.0), (41.5, 40.0)),
+            "{curves:?}"
+        );
+    }
+
+    #[test]
+    fn an_x_broken_at_its_crossing_goes_straight_through() {
+        // The upper arms of an "X" meet in a "V" at the crossing; the lower arms end 5.7 px
+        // short of it, each pointing at it along the line of the opposite upper arm. Joined to
+        // each other round the corner (their rays meet at the crossing) they would make a "Λ".
+        let mut upper = line((-30.0, -30.0), (0.0, 0.0));
+        upper.extend(line((0.0, 0.0), (30.0, -30.0)).into_iter().skip(1));
+        let strokes = vec![
+            open(&upper),
+            open(&line((-30.0, 30.0), (-4.0, 4.0))),
+            open(&line((30.0, 30.0), (4.0, 4.0))),
+        ];
+        let curves = connect(&strokes, Method::Strokes, 4.0, 3.0);
+        assert_eq!(curves.len(), 2, "{curves:?}");
+        let reach = 31.06; // the arms' ends pushed out by half the 3 px pen
+        assert!(
+            has_straight_curve(&curves, (-reach, reach), (reach, -reach)),
+            "{curves:?}"
+        );
+        assert!(
+            has_straight_curve(&curves, (reach, reach), (-reach, -reach)),
+            "{curves:?}"
+        );
+    }
+
+    #[test]
+    fn a_corner_stays_whole_when_the_end_below_it_has_a_partner() {
+        // The same "L" and the end 8 px below its corner, but now a second line ends beside
+        // that end, their lines meeting 2 px ahead of it: the two ends turn into each other, and
+        // the corner is not broken open (which would leave the second line in the air).
+        let mut upper_and_bar = line((0.0, 0.0), (0.0, 40.0));
+        upper_and_bar.extend(line((0.0, 40.0), (40.0, 40.0)).into_iter().skip(1));
+        let strokes = vec![
+            open(&upper_and_bar),
+            open(&line((0.0, 80.0), (0.0, 48.0))),
+            open(&line((40.0, 46.0), (8.0, 46.0))),
+        ];
+        let curves = connect(&strokes, Method::Strokes, 4.0, 3.0);
+        assert_eq!(curves.len(), 2, "{curves:?}");
+        let corner = curves
+            .iter()
+            .find(|c| c.points.contains(&Point::new(0.0, 40.0)))
+            .expect("the L");
+        assert_eq!(corner.points.len(), upper_and_bar.len(), "{corner:?}");
     }
 
     #[test]

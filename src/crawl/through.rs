@@ -1,0 +1,259 @@
+//! Bridges through a corner: a line broken by a gap right where another line meets or crosses
+//! it. The skeleton then joins the piece on one side of the crossing to the other line in a
+//! corner (an "H" whose left stem has a gap just below the crossbar becomes an "L" of the upper
+//! stem and the crossbar), and the piece on the far side ends pointing at that corner. The
+//! broken line goes on through the corner; the other line ends there. This is issue 9's "bridges
+//! to junctions", on the crawl's stroke graph (Parakkat & Muthuganapathy 2016 bridge only free
+//! ends; the good-continuation rule is the same as for [`super::bridges`]).
+
+use std::collections::{HashMap, HashSet};
+
+use kurbo::{Point, Vec2};
+
+use super::bridges::BridgeableEnd;
+use super::strokes::StrokeVertices;
+
+/// A corner of a stroke sharper than this (degrees of turn) may be where a broken line crosses
+/// it: the lines of a letter's crossings and junctions meet at 45° or more.
+const MIN_CORNER_TURN_DEGREES: f64 = 45.0;
+
+/// The arms of a corner are measured this many sample spacings from it: far enough that the
+/// skeleton's rounding of the corner does not bend them.
+const ARM_IN_SPACINGS: f64 = 2.0;
+
+/// The end must point at the corner, and the corner's kept arm go on from the end's line, each
+/// within this angle (degrees): a straight continuation, with room for the wobble of a
+/// short end's direction.
+const MAX_THROUGH_TURN_DEGREES: f64 = 40.0;
+
+/// DECISION: a bridge through a corner costs this plus its straight-bridge cost: it is taken
+/// only by an end that no ordinary bridge took. Breaking a corner open is the less likely
+/// reading: where the end has a partner (the other side of a neck meeting an outline at a
+/// corner), the two ends joined leave nothing dangling, while opening the corner would leave
+/// its cut arm and the partner both ending in the air. Cusps ([`super::bridges`]) come after.
+/// Except at a crossing: where each arm of a corner has an end going on into it from the far
+/// side (an "X" or an "8" broken where its lines cross), both lines go straight through, at the
+/// cost of straight bridges, before the two ends can be joined round the corner.
+const THROUGH_COST_OFFSET: f64 = 1e8;
+
+/// The two ends of a crossing lie across the same gap from it: the farther at most this many
+/// times as far from the corner as the nearer, plus a pen width for the skeleton's wobble.
+const CROSSING_DISTANCE_RATIO: f64 = 2.0;
+
+/// A corner of a stroke that a free end may go on through: the corner's vertex, the neighbour on
+/// the arm that continues the end's line (`keep`), and the neighbour on the other arm (`cut`),
+/// which ends at the corner when the bridge is taken.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct ThroughCorner {
+    pub(super) corner: u32,
+    pub(super) stroke: usize,
+    pub(super) keep: u32,
+    pub(super) cut: u32,
+}
+
+/// A possible bridge from a free end through a corner, with its cost and length.
+pub(super) struct ThroughCandidate {
+    pub(super) end: u32,
+    pub(super) through: ThroughCorner,
+    pub(super) cost: f64,
+    pub(super) length: f64,
+}
+
+/// A corner found on a stroke: its vertex, the neighbours on both sides and the unit directions
+/// of the two arms leaving it.
+struct Corner {
+    vertex: u32,
+    stroke: usize,
+    neighbours: [u32; 2],
+    arms: [Vec2; 2],
+}
+
+/// Every free end that points at a corner of a stroke (within `reach`) from the far side of
+/// one of its arms: the end's line goes straight on into that arm, and clearly not into the
+/// other. `turn_cost` is the continuation cost's `k`.
+pub(super) fn through_candidates(
+    vertices: &StrokeVertices,
+    ends: &[BridgeableEnd],
+    reach: f64,
+    spacing: f64,
+    stroke_width: f64,
+    turn_cost: f64,
+) -> Vec<ThroughCandidate> {
+    let corners = find_corners(vertices, ARM_IN_SPACINGS * spacing);
+    if corners.is_empty() || reach <= 0.0 {
+        return Vec::new();
+    }
+    // A grid of cells `reach` wide, so that each end looks only at the corners in the cells
+    // around it (a page of noise has hundreds of thousands of both).
+    let cell_of = |p: Point| ((p.x / reach).floor() as i64, (p.y / reach).floor() as i64);
+    let mut grid: HashMap<(i64, i64), Vec<usize>> = HashMap::new();
+    for (index, corner) in corners.iter().enumerate() {
+        grid.entry(cell_of(vertices.positions[corner.vertex as usize]))
+            .or_default()
+            .push(index);
+    }
+    let max_turn = MAX_THROUGH_TURN_DEGREES.to_radians();
+    let mut candidates = Vec::new();
+    for end in ends.iter().filter(|end| !end.attached) {
+        let Some(outward) = end.outward else {
+            continue; // a dot has no line to go on with
+        };
+        let (cx, cy) = cell_of(end.at);
+        let mut near: Vec<usize> = (cx - 1..=cx + 1)
+            .flat_map(|x| (cy - 1..=cy + 1).map(move |y| (x, y)))
+            .filter_map(|cell| grid.get(&cell))
+            .flatten()
+            .copied()
+            .collect();
+        near.sort_unstable();
+        for corner in near.iter().map(|&index| &corners[index]) {
+            let at = vertices.positions[corner.vertex as usize];
+            let offset = at - end.at;
+            let distance = offset.hypot();
+            if distance > reach || distance == 0.0 || corner.neighbours.contains(&end.vertex) {
+                continue;
+            }
+            let towards = offset / distance;
+            let turn_at_end = angle(outward, towards);
+            let turns = corner.arms.map(|arm| angle(towards, arm));
+            let (keep, cut) = if turns[0] <= turns[1] { (0, 1) } else { (1, 0) };
+            // Clearly one arm: the other turns off at least twice as much.
+            if turn_at_end > max_turn || turns[keep] > max_turn || turns[cut] < 2.0 * turns[keep] {
+                continue;
+            }
+            let cost = distance * (turn_cost * (turn_at_end.powi(2) + turns[keep].powi(2))).exp();
+            candidates.push(ThroughCandidate {
+                end: end.vertex,
+                through: ThroughCorner {
+                    corner: corner.vertex,
+                    stroke: corner.stroke,
+                    keep: corner.neighbours[keep],
+                    cut: corner.neighbours[cut],
+                },
+                cost,
+                length: distance,
+            });
+        }
+    }
+    // Corners that two different ends go on through, one into each arm: crossings. Compared
+    // within each corner's own candidates (few), not across the page's.
+    let mut at_corner: HashMap<u32, Vec<&ThroughCandidate>> = HashMap::new();
+    for candidate in &candidates {
+        at_corner
+            .entry(candidate.through.corner)
+            .or_default()
+            .push(candidate);
+    }
+    let crossing: HashSet<u32> = at_corner
+        .iter()
+        .filter(|(_, group)| {
+            group.iter().any(|a| {
+                group.iter().any(|b| {
+                    b.through.keep != a.through.keep
+                        && b.end != a.end
+                        && a.length.max(b.length)
+                            <= CROSSING_DISTANCE_RATIO * a.length.min(b.length) + stroke_width
+                })
+            })
+        })
+        .map(|(&corner, _)| corner)
+        .collect();
+    for candidate in &mut candidates {
+        if !crossing.contains(&candidate.through.corner) {
+            candidate.cost += THROUGH_COST_OFFSET;
+        }
+    }
+    candidates
+}
+
+/// The angle between two unit vectors, in radians.
+fn angle(a: Vec2, b: Vec2) -> f64 {
+    a.dot(b).clamp(-1.0, 1.0).acos()
+}
+
+/// The sharp corners of every stroke: vertices where the stroke turns by more than
+/// [`MIN_CORNER_TURN_DEGREES`] between its arms measured `arm` away, the sharpest of each run of
+/// such vertices. Both arms must reach `arm`; a closed stroke's corners may lie anywhere on it.
+fn find_corners(vertices: &StrokeVertices, arm: f64) -> Vec<Corner> {
+    let min_turn = MIN_CORNER_TURN_DEGREES.to_radians();
+    let mut corners = Vec::new();
+    for (stroke, of_stroke) in vertices.of_stroke.iter().enumerate() {
+        let closed = vertices.closed[stroke];
+        let n = of_stroke.len();
+        if n < 3 {
+            continue;
+        }
+        let point = |k: usize| vertices.positions[of_stroke[k] as usize];
+        // The turn at each vertex, and the arms that give it (none where an arm runs out).
+        let measured: Vec<Option<(f64, [Vec2; 2])>> = (0..n)
+            .map(|k| {
+                let back = arm_direction(&point, k, n, closed, arm, false)?;
+                let ahead = arm_direction(&point, k, n, closed, arm, true)?;
+                let turn = std::f64::consts::PI - angle(back, ahead);
+                Some((turn, [back, ahead]))
+            })
+            .collect();
+        let turn_at = |k: usize| measured[k].map_or(0.0, |(turn, _)| turn);
+        for k in 0..n {
+            let Some((turn, arms)) = measured[k] else {
+                continue;
+            };
+            let (before, after) = if closed {
+                ((k + n - 1) % n, (k + 1) % n)
+            } else if k == 0 || k + 1 == n {
+                continue;
+            } else {
+                (k - 1, k + 1)
+            };
+            // The sharpest of a run: ties go to the first.
+            if turn < min_turn || turn < turn_at(before) || turn <= turn_at(after) {
+                continue;
+            }
+            corners.push(Corner {
+                vertex: of_stroke[k],
+                stroke,
+                neighbours: [of_stroke[before], of_stroke[after]],
+                arms,
+            });
+        }
+    }
+    corners
+}
+
+/// The unit direction from vertex `k` to the point `arm` along the stroke (ahead or back), if
+/// the stroke reaches that far (round a closed stroke, at most halfway).
+fn arm_direction(
+    point: &impl Fn(usize) -> Point,
+    k: usize,
+    n: usize,
+    closed: bool,
+    arm: f64,
+    ahead: bool,
+) -> Option<Vec2> {
+    let from = point(k);
+    let steps = if closed {
+        n / 2
+    } else if ahead {
+        n - 1 - k
+    } else {
+        k
+    };
+    let mut walked = 0.0;
+    let mut previous = from;
+    for step in 1..=steps {
+        let index = if ahead {
+            (k + step) % n
+        } else {
+            (k + n - step) % n
+        };
+        let p = point(index);
+        walked += previous.distance(p);
+        previous = p;
+        if walked >= arm {
+            let direction = p - from;
+            let length = direction.hypot();
+            return (length > 0.0).then(|| direction / length);
+        }
+    }
+    None
+}
