@@ -16,6 +16,11 @@ pub struct NeighbourGraph {
     pub(super) squared_lengths: Vec<f64>,
 }
 
+/// At most this many vertex ranges fill the adjacency lists in parallel: each range reads every
+/// edge, so ranges beyond the cores only add work, and a machine with more cores than this gains
+/// little from them on edge lists that fit in memory.
+const MAX_ADJACENCY_PARTS: usize = 64;
+
 impl NeighbourGraph {
     /// A graph with the given undirected edges, which must be distinct and not loops.
     ///
@@ -23,7 +28,9 @@ impl NeighbourGraph {
     /// in the adjacency lists of its own range, so no two threads write to the same place.
     pub(super) fn from_edge_list(positions: &[Point], edges: &[(u32, u32)]) -> Self {
         let n = positions.len();
-        let parts = rayon::current_num_threads().clamp(1, 64).min(n.max(1));
+        let parts = rayon::current_num_threads()
+            .clamp(1, MAX_ADJACENCY_PARTS)
+            .min(n.max(1));
         let bounds: Vec<usize> = (0..=parts).map(|k| n * k / parts).collect();
         let degrees: Vec<Vec<u32>> = (0..parts)
             .into_par_iter()
