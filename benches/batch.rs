@@ -28,7 +28,8 @@ use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 
 use crawltrace::batch::{
-    discover_inputs, fnv1a_64, run_batch, trace_file_to_document, BatchOptions, FileResult,
+    discover_inputs, fnv1a_64, run_batch, trace_file_to_document, BatchOptions, Discovery,
+    FileResult,
 };
 use crawltrace::{ExportOptions, TraceOptions};
 use divan::counter::ItemsCount;
@@ -135,22 +136,35 @@ fn drawings() -> PathBuf {
     folder.path().to_path_buf()
 }
 
+/// The options of `crawltrace trace IN -o OUT -r --force -q` on `jobs` threads. `force`: every
+/// sample redoes every file instead of finding them up to date.
+fn every_file_again(jobs: usize) -> BatchOptions {
+    BatchOptions {
+        recursive: true,
+        jobs: Some(jobs),
+        force: true,
+        quiet: true,
+        ..BatchOptions::default()
+    }
+}
+
+/// The `FILES` inputs below `folder`, found as the batch finds them.
+fn discover_all(folder: &Path, options: &BatchOptions) -> Discovery {
+    let discovery =
+        discover_inputs(&[folder.to_path_buf()], options).expect("the inputs are found");
+    assert_eq!(discovery.inputs.len(), FILES);
+    discovery
+}
+
 /// 200 one-megapixel drawings traced and written as `crawltrace trace IN -o OUT -r --force -q`
 /// would, on `jobs` threads.
 #[divan::bench(args = [1, 2], sample_count = 3, sample_size = 1)]
 fn real_tracer_200_drawings_of_1_megapixel(bencher: Bencher, jobs: usize) {
     let input = drawings();
     let output = tempfile::tempdir().expect("a temporary folder");
-    let options = BatchOptions {
-        recursive: true,
-        jobs: Some(jobs),
-        force: true,
-        quiet: true,
-        ..BatchOptions::default()
-    };
+    let options = every_file_again(jobs);
     let trace_options = TraceOptions::default();
-    let discovery = discover_inputs(&[input], &options).expect("the inputs are found");
-    assert_eq!(discovery.inputs.len(), FILES);
+    let discovery = discover_all(&input, &options);
     bencher.counter(ItemsCount::new(FILES)).bench(|| {
         let summary = run_batch(&discovery, output.path(), &options, |path| {
             trace_file_to_document(path, &trace_options, &ExportOptions::default())
@@ -210,17 +224,8 @@ fn input_tree() -> tempfile::TempDir {
 fn run_batch_200_files(bencher: Bencher, jobs: usize) {
     let input = input_tree();
     let output = tempfile::tempdir().expect("a temporary folder");
-    // `force`: every sample redoes every file instead of finding them up to date.
-    let options = BatchOptions {
-        recursive: true,
-        jobs: Some(jobs),
-        force: true,
-        quiet: true,
-        ..BatchOptions::default()
-    };
-    let discovery =
-        discover_inputs(&[input.path().to_path_buf()], &options).expect("the inputs are found");
-    assert_eq!(discovery.inputs.len(), FILES);
+    let options = every_file_again(jobs);
+    let discovery = discover_all(input.path(), &options);
     bencher.counter(ItemsCount::new(FILES)).bench(|| {
         let summary =
             run_batch(&discovery, output.path(), &options, fake_trace).expect("the batch runs");
@@ -234,15 +239,8 @@ fn run_batch_200_files(bencher: Bencher, jobs: usize) {
 fn run_batch_200_files_no_work(bencher: Bencher, jobs: usize) {
     let input = input_tree();
     let output = tempfile::tempdir().expect("a temporary folder");
-    let options = BatchOptions {
-        recursive: true,
-        jobs: Some(jobs),
-        force: true,
-        quiet: true,
-        ..BatchOptions::default()
-    };
-    let discovery =
-        discover_inputs(&[input.path().to_path_buf()], &options).expect("the inputs are found");
+    let options = every_file_again(jobs);
+    let discovery = discover_all(input.path(), &options);
     bencher.counter(ItemsCount::new(FILES)).bench(|| {
         run_batch(&discovery, output.path(), &options, |_| {
             Ok::<_, std::convert::Infallible>(FileResult {

@@ -75,28 +75,18 @@ pub fn generate(
 
     let name = format!("{}-{}-{index:03}", family.name, style.name());
     let image_file = format!("{name}.{}", style.extension());
-    let truth = truth_svg(
-        &name,
+    let drawn = Drawn {
+        name: &name,
         family,
         style,
-        &hand,
+        hand: &hand,
         seed,
-        (width, height),
-        &curves,
-        &figure,
-    );
-    let manifest = manifest_line(
-        &name,
-        &image_file,
-        family,
-        style,
-        &hand,
-        seed,
-        (width, height),
-        &curves,
-        &figure,
-        strokes.len(),
-    );
+        size: (width, height),
+        curves: &curves,
+        figure: &figure,
+    };
+    let truth = truth_svg(&drawn);
+    let manifest = manifest_line(&drawn, &image_file, strokes.len());
     Generated {
         name,
         image_file,
@@ -104,6 +94,19 @@ pub fn generate(
         truth,
         manifest,
     }
+}
+
+/// What the ground truth and the manifest line describe: one drawing as it was made.
+struct Drawn<'a> {
+    name: &'a str,
+    family: &'a Family,
+    style: Style,
+    hand: &'a Hand,
+    seed: u64,
+    /// Page width and height, px.
+    size: (u32, u32),
+    curves: &'a [TrueCurve],
+    figure: &'a Figure,
 }
 
 /// Every stroke of the figure (curves along their plans, then dots), in a random drawing order.
@@ -139,38 +142,28 @@ fn sketch_figure(
 }
 
 /// The drawing's line of `manifest.jsonl`.
-#[allow(clippy::too_many_arguments)]
-fn manifest_line(
-    name: &str,
-    image_file: &str,
-    family: &Family,
-    style: Style,
-    hand: &Hand,
-    seed: u64,
-    (width, height): (u32, u32),
-    curves: &[TrueCurve],
-    figure: &Figure,
-    strokes: usize,
-) -> String {
+fn manifest_line(drawn: &Drawn, image_file: &str, strokes: usize) -> String {
+    let name = drawn.name;
+    let (width, height) = drawn.size;
     serde_json::json!({
         "name": name,
         "image": image_file,
         "truth": format!("{name}.truth.svg"),
-        "family": family.name,
-        "touching": family.touching,
-        "style": style.name(),
-        "pen": round2(hand.pen),
-        "jitter": round2(hand.jitter),
-        "tolerance": round2(hand.jitter + hand.pen / 2.0 + 2.0),
+        "family": drawn.family.name,
+        "touching": drawn.family.touching,
+        "style": drawn.style.name(),
+        "pen": round2(drawn.hand.pen),
+        "jitter": round2(drawn.hand.jitter),
+        "tolerance": round2(drawn.hand.jitter + drawn.hand.pen / 2.0 + 2.0),
         "width": width,
         "height": height,
-        "curves": curves.len(),
-        "closed_curves": curves.iter().filter(|c| c.closed).count(),
-        "dots": figure.dots.len(),
+        "curves": drawn.curves.len(),
+        "closed_curves": drawn.curves.iter().filter(|c| c.closed).count(),
+        "dots": drawn.figure.dots.len(),
         "strokes": strokes,
-        "gap_px": [round2(hand.gap.0), round2(hand.gap.1)],
-        "stroke_px": [round2(hand.stroke.0), round2(hand.stroke.1)],
-        "seed": seed,
+        "gap_px": [round2(drawn.hand.gap.0), round2(drawn.hand.gap.1)],
+        "stroke_px": [round2(drawn.hand.stroke.0), round2(drawn.hand.stroke.1)],
+        "seed": drawn.seed,
     })
     .to_string()
 }
@@ -203,17 +196,17 @@ fn lay_out(figure: &Figure, hand: &Hand, random: &mut SplitMix64) -> (Figure, u3
 /// The ground truth: one `<path>` per true curve (like the samples' truth files), then each dot
 /// as a zero-length round-capped path as wide as the dot, in a group marked `data-kind="dots"`.
 /// The root carries the family, style, pen width and jitter as `data-` attributes.
-#[allow(clippy::too_many_arguments)]
-fn truth_svg(
-    name: &str,
-    family: &Family,
-    style: Style,
-    hand: &Hand,
-    seed: u64,
-    (width, height): (u32, u32),
-    curves: &[TrueCurve],
-    figure: &Figure,
-) -> String {
+fn truth_svg(drawn: &Drawn) -> String {
+    let &Drawn {
+        name,
+        family,
+        style,
+        hand,
+        seed,
+        size: (width, height),
+        curves,
+        figure,
+    } = drawn;
     let drawing = Drawing {
         width: f64::from(width),
         height: f64::from(height),

@@ -254,6 +254,9 @@ fn compile_glob(pattern: &str) -> Result<Filter, BatchError> {
     })
 }
 
+/// Walks `root` (and its subfolders when `recursive`) in name order: every file that the glob and
+/// the extension select goes to `found`, readable or not; `discovery` counts the others and keeps
+/// the warnings.
 fn scan_folder(
     root: &Path,
     recursive: bool,
@@ -266,74 +269,96 @@ fn scan_folder(
         .min_depth(1)
         .max_depth(if recursive { usize::MAX } else { 1 })
         .sort_by_file_name();
-    // Whether a file passes the glob and the extension test, counting those that do not.
-    let wanted = |relative: &Path, discovery: &mut Discovery| {
-        if glob.is_some_and(|glob| !glob.matches(relative)) {
-            discovery.excluded_by_glob += 1;
-            false
-        } else if !is_image_path(relative) {
-            discovery.not_images += 1;
-            false
-        } else {
-            true
-        }
-    };
     for entry in walker {
-        match entry {
-            Ok(entry) => {
-                if entry.file_type().is_dir() {
-                    continue;
-                }
-                let relative = relative_to(entry.path(), root);
-                if wanted(&relative, discovery) {
-                    // Links are followed: the kind is the target's.
-                    let not_a_file = (!entry.file_type().is_file())
-                        .then(|| {
-                            entry
-                                .metadata()
-                                .ok()
-                                .and_then(|metadata| not_a_file_kind(&metadata))
-                                .unwrap_or("not a file")
-                        })
-                        .map(Unreadable::NotAFile);
-                    found.push(new_input(entry.path().to_path_buf(), relative, not_a_file));
-                }
-            }
-            Err(error) => {
-                let path = error.path().unwrap_or(root).to_path_buf();
-                if let Some(ancestor) = error.loop_ancestor() {
-                    // Everything behind the link is scanned through its real place already.
-                    discovery.warnings.push(ScanWarning::LinkLoop {
-                        link: path,
-                        ancestor: ancestor.to_path_buf(),
-                    });
-                    continue;
-                }
-                let relative = relative_to(&path, root);
-                if relative.as_os_str().is_empty() {
-                    continue; // the root itself, checked readable by the caller
-                }
-                let link_or_file = fs::symlink_metadata(&path);
-                let is_folder = link_or_file.as_ref().is_ok_and(|m| m.is_dir());
-                // A file we cannot reach is reported only if it would have been taken.
-                if !is_folder && !wanted(&relative, discovery) {
-                    continue;
-                }
-                let broken_link = error
-                    .io_error()
-                    .is_some_and(|io_error| io_error.kind() == io::ErrorKind::NotFound)
-                    && link_or_file.is_ok_and(|m| m.file_type().is_symlink());
-                let unreadable = if broken_link {
-                    Unreadable::BrokenLink
-                } else if is_folder && error.io_error().is_some() {
-                    Unreadable::Folder(Arc::new(error))
-                } else {
-                    Unreadable::Entry(Arc::new(error))
-                };
-                found.push(new_input(path, relative, Some(unreadable)));
-            }
-        }
+        let input = match entry {
+            Ok(entry) => walked_file(&entry, root, glob, discovery),
+            Err(error) => unreachable_entry(error, root, glob, discovery),
+        };
+        found.extend(input);
     }
+}
+
+/// Whether a file passes the glob and the extension test, counting those that do not.
+fn wanted(relative: &Path, glob: Option<&Filter>, discovery: &mut Discovery) -> bool {
+    if glob.is_some_and(|glob| !glob.matches(relative)) {
+        discovery.excluded_by_glob += 1;
+        false
+    } else if !is_image_path(relative) {
+        discovery.not_images += 1;
+        false
+    } else {
+        true
+    }
+}
+
+/// The input of an entry the walk reached, if it is no folder and is wanted; one that is not a
+/// regular file (a named pipe, a device) is taken unreadable, to be reported.
+fn walked_file(
+    entry: &walkdir::DirEntry,
+    root: &Path,
+    glob: Option<&Filter>,
+    discovery: &mut Discovery,
+) -> Option<Input> {
+    if entry.file_type().is_dir() {
+        return None;
+    }
+    let relative = relative_to(entry.path(), root);
+    if !wanted(&relative, glob, discovery) {
+        return None;
+    }
+    // Links are followed: the kind is the target's.
+    let not_a_file = (!entry.file_type().is_file())
+        .then(|| {
+            entry
+                .metadata()
+                .ok()
+                .and_then(|metadata| not_a_file_kind(&metadata))
+                .unwrap_or("not a file")
+        })
+        .map(Unreadable::NotAFile);
+    Some(new_input(entry.path().to_path_buf(), relative, not_a_file))
+}
+
+/// The unreadable input of an entry the walk could not reach (a broken link, a folder or file it
+/// may not read), or none: a link loop is a warning, the root itself was checked by the caller,
+/// and a file that would not have been taken is not reported.
+fn unreachable_entry(
+    error: walkdir::Error,
+    root: &Path,
+    glob: Option<&Filter>,
+    discovery: &mut Discovery,
+) -> Option<Input> {
+    let path = error.path().unwrap_or(root).to_path_buf();
+    if let Some(ancestor) = error.loop_ancestor() {
+        // Everything behind the link is scanned through its real place already.
+        discovery.warnings.push(ScanWarning::LinkLoop {
+            link: path,
+            ancestor: ancestor.to_path_buf(),
+        });
+        return None;
+    }
+    let relative = relative_to(&path, root);
+    if relative.as_os_str().is_empty() {
+        return None; // the root itself, checked readable by the caller
+    }
+    let link_or_file = fs::symlink_metadata(&path);
+    let is_folder = link_or_file.as_ref().is_ok_and(|m| m.is_dir());
+    // A file we cannot reach is reported only if it would have been taken.
+    if !is_folder && !wanted(&relative, glob, discovery) {
+        return None;
+    }
+    let broken_link = error
+        .io_error()
+        .is_some_and(|io_error| io_error.kind() == io::ErrorKind::NotFound)
+        && link_or_file.is_ok_and(|m| m.file_type().is_symlink());
+    let unreadable = if broken_link {
+        Unreadable::BrokenLink
+    } else if is_folder && error.io_error().is_some() {
+        Unreadable::Folder(Arc::new(error))
+    } else {
+        Unreadable::Entry(Arc::new(error))
+    };
+    Some(new_input(path, relative, Some(unreadable)))
 }
 
 fn relative_to(path: &Path, root: &Path) -> PathBuf {

@@ -16,6 +16,16 @@ pub struct NeighbourGraph {
     pub(super) squared_lengths: Vec<f64>,
 }
 
+/// Vertices per block when the adjacency lists are sorted in parallel: at a Delaunay graph's
+/// fewer than six neighbours a vertex, a block holds up to some 25 000 neighbours, enough work to
+/// outweigh handing it to a thread, and small enough that the blocks spread evenly over the cores.
+const SORT_BLOCK_VERTICES: usize = 4096;
+
+/// At most this many vertex ranges fill the adjacency lists in parallel: each range reads every
+/// edge, so ranges beyond the cores only add work, and a machine with more cores than this gains
+/// little from them on edge lists that fit in memory.
+const MAX_ADJACENCY_PARTS: usize = 64;
+
 impl NeighbourGraph {
     /// A graph with the given undirected edges, which must be distinct and not loops.
     ///
@@ -23,7 +33,9 @@ impl NeighbourGraph {
     /// in the adjacency lists of its own range, so no two threads write to the same place.
     pub(super) fn from_edge_list(positions: &[Point], edges: &[(u32, u32)]) -> Self {
         let n = positions.len();
-        let parts = rayon::current_num_threads().clamp(1, 64).min(n.max(1));
+        let parts = rayon::current_num_threads()
+            .clamp(1, MAX_ADJACENCY_PARTS)
+            .min(n.max(1));
         let bounds: Vec<usize> = (0..=parts).map(|k| n * k / parts).collect();
         let degrees: Vec<Vec<u32>> = (0..parts)
             .into_par_iter()
@@ -81,12 +93,11 @@ impl NeighbourGraph {
         let vertex_count = offsets.len() - 1;
         let mut squared_lengths = vec![0.0; neighbours.len()];
         // Vertices in blocks, each block's lists sorted on its own thread.
-        const BLOCK: usize = 4096;
         let mut blocks = Vec::new();
         let (mut rest_neighbours, mut rest_lengths) =
             (&mut neighbours[..], &mut squared_lengths[..]);
-        for first in (0..vertex_count).step_by(BLOCK) {
-            let last = (first + BLOCK).min(vertex_count);
+        for first in (0..vertex_count).step_by(SORT_BLOCK_VERTICES) {
+            let last = (first + SORT_BLOCK_VERTICES).min(vertex_count);
             let size = offsets[last] - offsets[first];
             let (block_neighbours, more_neighbours) = rest_neighbours.split_at_mut(size);
             let (block_lengths, more_lengths) = rest_lengths.split_at_mut(size);

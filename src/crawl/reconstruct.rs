@@ -46,6 +46,10 @@ pub struct Reconstruction {
     pub merged_duplicates: Vec<MergedDuplicate>,
 }
 
+/// The largest coordinate magnitude accepted: spade's limit for exact predicates without overflow
+/// (`spade::MAX_ALLOWED_VALUE`, 2^201 ≈ 3.2e60) rounded down to the figure the error quotes.
+const MAX_COORDINATE_MAGNITUDE: f64 = 1e60;
+
 /// Reconstructs curves from a planar point set with no parameter.
 ///
 /// This is [`NeighbourGraph::delaunay`] followed by [`crawl`] with [`paper_closable`], on the
@@ -156,7 +160,8 @@ impl CanonicalPoints {
             }
             for value in [p.x, p.y] {
                 let magnitude = value.abs();
-                if value != 0.0 && !(spade::MIN_ALLOWED_VALUE..=1e60).contains(&magnitude) {
+                let representable = spade::MIN_ALLOWED_VALUE..=MAX_COORDINATE_MAGNITUDE;
+                if value != 0.0 && !representable.contains(&magnitude) {
                     return Err(ReconstructError::OutOfRange { index, value });
                 }
             }

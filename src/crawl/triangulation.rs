@@ -58,6 +58,8 @@ impl NeighbourGraph {
             id: v,
         };
         let mut order = insertion_order(positions);
+        // By Euler's formula a planar triangulation of n points has fewer than 3n edges and 2n
+        // faces.
         let mut triangulation: DelaunayTriangulation<IdentifiedVertex> =
             DelaunayTriangulation::with_capacity(n, 3 * n, 2 * n);
         let out_of_range = |v: u32| {
@@ -180,7 +182,7 @@ fn insertion_order(positions: &[Point]) -> Vec<u32> {
                 let round = BRIO_ROUNDS + 1 - brio_level(v);
                 (round, hilbert_index(cell(p.x, low.x), cell(p.y, low.y)))
             };
-            (u64::from(round) << 58) | (u64::from(along) << 32) | u64::from(v)
+            (u64::from(round) << ROUND_SHIFT) | (u64::from(along) << ALONG_SHIFT) | u64::from(v)
         })
         .collect();
     keys.par_sort_unstable();
@@ -192,6 +194,12 @@ const BRIO_ROUNDS: u32 = 32;
 
 /// Side of the Hilbert grid: 2^13 cells, so that an index fits in 26 bits.
 const HILBERT_SIDE: u32 = 1 << 13;
+
+/// The sort key of a vertex packs, from the top: its round (6 bits, at most `BRIO_ROUNDS + 1`),
+/// its Hilbert index (26 bits), its id (32 bits), so that one integer sort orders all three.
+const ROUND_SHIFT: u32 = 58;
+/// See [`ROUND_SHIFT`]: the Hilbert index sits above the 32 bits of the id.
+const ALONG_SHIFT: u32 = 32;
 
 /// The BRIO level of a vertex: 0 with probability 1/2, 1 with probability 1/4, …; higher levels are
 /// inserted earlier. A SplitMix64 hash of the id stands in for a random draw.

@@ -659,6 +659,22 @@ mod tests {
         })
     }
 
+    /// Options for dark ink on light paper, thresholded by `method`.
+    fn not_inverted(method: ThresholdMethod) -> BinarizeOptions {
+        BinarizeOptions {
+            method,
+            invert: false,
+        }
+    }
+
+    /// Options for light ink on dark paper, thresholded by `method`.
+    fn inverted(method: ThresholdMethod) -> BinarizeOptions {
+        BinarizeOptions {
+            method,
+            invert: true,
+        }
+    }
+
     /// A 3 px horizontal stroke and a 2 px diagonal one.
     fn drawing(width: u32, height: u32) -> Bitmap {
         let mut ink = Bitmap::new(width as usize, height as usize);
@@ -676,13 +692,7 @@ mod tests {
     #[test]
     fn otsu_separates_two_levels() {
         let gray = GrayImage::from_fn(20, 10, |x, _| Luma([if x < 5 { 40 } else { 200 }]));
-        let result = binarize(
-            &gray,
-            &BinarizeOptions {
-                method: ThresholdMethod::Otsu,
-                invert: false,
-            },
-        );
+        let result = binarize(&gray, &not_inverted(ThresholdMethod::Otsu));
         let MethodUsed::Otsu { level } = result.method_used else {
             panic!("{:?}", result.method_used)
         };
@@ -716,13 +726,7 @@ mod tests {
         assert_eq!(auto.method_used, MethodUsed::Adaptive);
         assert_eq!(auto.mask, ink, "Auto missed ink or took paper for ink");
 
-        let otsu = binarize(
-            &gray,
-            &BinarizeOptions {
-                method: ThresholdMethod::Otsu,
-                invert: false,
-            },
-        );
+        let otsu = binarize(&gray, &not_inverted(ThresholdMethod::Otsu));
         let wrong = otsu
             .mask
             .as_bytes()
@@ -764,13 +768,7 @@ mod tests {
             auto.method_used
         );
         assert_eq!(auto.mask, ink);
-        let adaptive = binarize(
-            &gray,
-            &BinarizeOptions {
-                method: ThresholdMethod::Adaptive,
-                invert: false,
-            },
-        );
+        let adaptive = binarize(&gray, &not_inverted(ThresholdMethod::Adaptive));
         assert_eq!(adaptive.method_used, MethodUsed::Adaptive);
         assert_eq!(adaptive.mask, ink);
     }
@@ -807,13 +805,7 @@ mod tests {
             }
         }
         // A fixed level is applied as given, even on a blank page.
-        let fixed = binarize(
-            &flat,
-            &BinarizeOptions {
-                method: ThresholdMethod::Fixed(240),
-                invert: false,
-            },
-        );
+        let fixed = binarize(&flat, &not_inverted(ThresholdMethod::Fixed(240)));
         assert_eq!(fixed.mask.count_ink(), 120 * 90);
         // No pixels at all.
         let empty = binarize(&GrayImage::new(0, 5), &BinarizeOptions::default());
@@ -853,13 +845,7 @@ mod tests {
             ThresholdMethod::Otsu,
             ThresholdMethod::Adaptive,
         ] {
-            let result = binarize(
-                &gray,
-                &BinarizeOptions {
-                    method,
-                    invert: false,
-                },
-            );
+            let result = binarize(&gray, &not_inverted(method));
             assert_eq!(result.mask, ink, "{method:?}");
         }
         // A couple of dust specks on a blank page are not ink.
@@ -885,41 +871,20 @@ mod tests {
             ThresholdMethod::Otsu,
             ThresholdMethod::Adaptive,
         ] {
-            let options = BinarizeOptions {
-                method,
-                invert: true,
-            };
+            let options = inverted(method);
             let result = binarize(&light_on_dark, &options);
             assert_eq!(result.mask, ink, "{method:?}");
             // Without invert, the paper would be the ink.
-            let wrong = binarize(
-                &light_on_dark,
-                &BinarizeOptions {
-                    method,
-                    invert: false,
-                },
-            );
+            let wrong = binarize(&light_on_dark, &not_inverted(method));
             assert_ne!(wrong.mask, ink, "{method:?}");
         }
         // Levels are reported in the input's gray values.
-        let otsu = binarize(
-            &light_on_dark,
-            &BinarizeOptions {
-                method: ThresholdMethod::Otsu,
-                invert: true,
-            },
-        );
+        let otsu = binarize(&light_on_dark, &inverted(ThresholdMethod::Otsu));
         let MethodUsed::Otsu { level } = otsu.method_used else {
             panic!()
         };
         assert!(level > 60 && level < 200, "level {level}");
-        let fixed = binarize(
-            &light_on_dark,
-            &BinarizeOptions {
-                method: ThresholdMethod::Fixed(128),
-                invert: true,
-            },
-        );
+        let fixed = binarize(&light_on_dark, &inverted(ThresholdMethod::Fixed(128)));
         assert_eq!(fixed.mask, ink);
         assert_eq!(fixed.method_used, MethodUsed::Fixed { level: 128 });
     }
@@ -937,13 +902,7 @@ mod tests {
         }
         let gray = photograph(width, height, &ink, |_, _| 1.0, 6);
         for method in [ThresholdMethod::Auto, ThresholdMethod::Adaptive] {
-            let result = binarize(
-                &gray,
-                &BinarizeOptions {
-                    method,
-                    invert: false,
-                },
-            );
+            let result = binarize(&gray, &not_inverted(method));
             assert_eq!(result.mask, ink, "{method:?}");
         }
     }

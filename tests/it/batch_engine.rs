@@ -63,9 +63,30 @@ fn recursive() -> BatchOptions {
 }
 
 fn run(inputs: &[&Path], out: &Path, options: &BatchOptions) -> BatchSummary<String> {
+    try_run(inputs, out, options).unwrap()
+}
+
+/// The batch of `inputs` (which must be found) into `out` with the fake processor: its summary,
+/// or the error that stopped it.
+fn try_run(
+    inputs: &[&Path],
+    out: &Path,
+    options: &BatchOptions,
+) -> Result<BatchSummary<String>, BatchError> {
     let inputs: Vec<PathBuf> = inputs.iter().map(|path| path.to_path_buf()).collect();
     let discovery = discover_inputs(&inputs, options).unwrap();
-    run_batch(&discovery, out, options, fake_processor).unwrap()
+    run_batch(&discovery, out, options, fake_processor)
+}
+
+/// The error of the outcome at `index`, which must have failed.
+fn failure(summary: &BatchSummary<String>, index: usize) -> &FileError<String> {
+    match &summary.outcomes[index].status {
+        FileStatus::Failed { error, .. } => error,
+        _ => panic!(
+            "outcome {index} did not fail: {:?}",
+            summary.outcomes[index]
+        ),
+    }
 }
 
 /// The relative paths of the outcomes with the given status, in outcome order.
@@ -194,14 +215,11 @@ fn a_failing_file_is_reported_and_the_others_are_still_written() {
     assert_eq!((summary.done, summary.skipped, summary.failed), (2, 0, 1));
     assert!(summary.failed > 0);
     assert_eq!(with_status(&summary, "failed"), ["b.png"]);
-    let FileStatus::Failed {
-        error: FileError::Process(message),
-        ..
-    } = &summary.outcomes[1].status
-    else {
-        panic!("{:?}", summary.outcomes[1]);
-    };
-    assert_eq!(message, "bad drawing", "the processor's own error is kept");
+    let error = failure(&summary, 1);
+    assert!(
+        matches!(error, FileError::Process(message) if message == "bad drawing"),
+        "the processor's own error is kept: {error:?}"
+    );
 }
 
 #[test]
@@ -218,13 +236,8 @@ fn a_panicking_processor_fails_one_file_only() {
     .unwrap();
 
     assert_eq!(files_under(out.path()), ["b.svg"]);
-    let FileStatus::Failed {
-        error: error @ FileError::Panic(_),
-        ..
-    } = &summary.outcomes[0].status
-    else {
-        panic!("{:?}", summary.outcomes[0]);
-    };
+    let error = failure(&summary, 0);
+    assert!(matches!(error, FileError::Panic(_)), "{error:?}");
     assert_eq!(error.to_string(), "internal error: index out of bounds");
     assert!(summary.failed > 0);
 }
@@ -237,13 +250,8 @@ fn an_output_subfolder_blocked_by_a_file_gives_per_file_errors() {
 
     assert_eq!(with_status(&summary, "failed"), ["a/one.png"]);
     assert_eq!(with_status(&summary, "done"), ["b/two.png"]);
-    let FileStatus::Failed {
-        error: error @ FileError::CreateFolder { .. },
-        ..
-    } = &summary.outcomes[0].status
-    else {
-        panic!("{:?}", summary.outcomes[0]);
-    };
+    let error = failure(&summary, 0);
+    assert!(matches!(error, FileError::CreateFolder { .. }), "{error:?}");
     let message = error.to_string();
     assert!(message.starts_with("cannot create the folder"), "{message}");
 }
@@ -258,17 +266,17 @@ fn a_folder_in_place_of_an_output_is_not_up_to_date() {
 
     assert_eq!(with_status(&summary, "failed"), ["a.png"]);
     assert_eq!(with_status(&summary, "done"), ["b.png"]);
-    let FileStatus::Failed {
-        error:
-            error @ FileError::OutputRefused {
+    let error = failure(&summary, 0);
+    assert!(
+        matches!(
+            error,
+            FileError::OutputRefused {
                 refusal: OutputRefusal::NotAFile("a folder"),
                 ..
-            },
-        ..
-    } = &summary.outcomes[0].status
-    else {
-        panic!("{:?}", summary.outcomes[0]);
-    };
+            }
+        ),
+        "{error:?}"
+    );
     let message = error.to_string();
     assert!(
         message.starts_with("refusing to replace a folder with a file"),
@@ -294,9 +302,7 @@ fn a_read_only_output_folder_gives_per_file_errors() {
     fs::set_permissions(out.path(), fs::Permissions::from_mode(0o755)).unwrap();
 
     assert_eq!(with_status(&summary, "failed"), ["a.png", "b.png"]);
-    let FileStatus::Failed { error, .. } = &summary.outcomes[0].status else {
-        panic!("{:?}", summary.outcomes[0]);
-    };
+    let error = failure(&summary, 0);
     let message = error.to_string();
     assert!(message.ends_with("permission denied"), "{message}");
     assert!(summary.failed > 0);
@@ -441,17 +447,17 @@ fn an_output_that_is_an_input_is_refused() {
     );
     assert_eq!(with_status(&summary, "failed"), ["drawing.svg"]);
     assert_eq!(with_status(&summary, "done"), ["a.png"]);
-    let FileStatus::Failed {
-        error:
-            error @ FileError::OutputRefused {
+    let error = failure(&summary, 1);
+    assert!(
+        matches!(
+            error,
+            FileError::OutputRefused {
                 refusal: OutputRefusal::Input,
                 ..
-            },
-        ..
-    } = &summary.outcomes[1].status
-    else {
-        panic!("{:?}", summary.outcomes[1]);
-    };
+            }
+        ),
+        "{error:?}"
+    );
     let message = error.to_string();
     assert!(
         message.starts_with("refusing to overwrite an input"),
@@ -616,8 +622,7 @@ fn a_report_in_a_missing_folder_is_an_error_before_any_work() {
         report: Some(out.path().join("missing").join("report.jsonl")),
         ..quiet()
     };
-    let discovery = discover_inputs(&[input.path().to_path_buf()], &options).unwrap();
-    let result = run_batch(&discovery, out.path(), &options, fake_processor);
+    let result = try_run(&[input.path()], out.path(), &options);
 
     assert!(
         matches!(result, Err(BatchError::Report { .. })),
@@ -636,8 +641,7 @@ fn a_report_in_the_output_folder_the_run_makes_is_written() {
         report: Some(parent.path().join("out").join("report.jsonl")),
         ..quiet()
     };
-    let discovery = discover_inputs(&[input.path().to_path_buf()], &options).unwrap();
-    run_batch(&discovery, &out, &options, fake_processor).unwrap();
+    run(&[input.path()], &out, &options);
 
     assert_eq!(files_under(&out), ["a.svg", "report.jsonl"]);
 }
@@ -650,8 +654,7 @@ fn a_report_over_an_input_is_refused() {
         report: Some(input.path().join("a.png")),
         ..quiet()
     };
-    let discovery = discover_inputs(&[input.path().to_path_buf()], &options).unwrap();
-    let result = run_batch(&discovery, out.path(), &options, fake_processor);
+    let result = try_run(&[input.path()], out.path(), &options);
 
     assert!(
         matches!(result, Err(BatchError::Report { .. })),
@@ -680,8 +683,7 @@ fn zero_jobs_is_an_error() {
         jobs: Some(0),
         ..quiet()
     };
-    let discovery = discover_inputs(&[input.path().to_path_buf()], &options).unwrap();
-    let result = run_batch(&discovery, out.path(), &options, fake_processor);
+    let result = try_run(&[input.path()], out.path(), &options);
     assert!(matches!(result, Err(BatchError::NoJobs)), "{result:?}");
 }
 
@@ -756,8 +758,7 @@ fn a_report_over_an_output_of_the_run_is_refused_before_any_work() {
                 shard,
                 ..quiet()
             };
-            let discovery = discover_inputs(&[input.path().to_path_buf()], &options).unwrap();
-            let result = run_batch(&discovery, out.path(), &options, fake_processor);
+            let result = try_run(&[input.path()], out.path(), &options);
             let Err(error @ BatchError::Report { .. }) = result else {
                 panic!("{svg} in {shard:?}: {result:?}");
             };
@@ -784,9 +785,7 @@ fn an_output_that_is_a_named_pipe_fails_its_input_alone() {
     assert_eq!(with_status(&summary, "failed"), ["a.png"]);
     assert_eq!(with_status(&summary, "done"), ["b.png"]);
     assert!(fs::symlink_metadata(&pipe).unwrap().file_type().is_fifo());
-    let FileStatus::Failed { error, .. } = &summary.outcomes[0].status else {
-        panic!("{:?}", summary.outcomes[0]);
-    };
+    let error = failure(&summary, 0);
     assert!(
         error
             .to_string()
@@ -811,9 +810,7 @@ fn a_named_pipe_named_like_an_image_fails_alone_without_blocking() {
     let summary = run(&[input.path()], out.path(), &options);
     assert_eq!(with_status(&summary, "failed"), ["b.png"]);
     assert_eq!(with_status(&summary, "done"), ["a.png", "c.png"]);
-    let FileStatus::Failed { error, .. } = &summary.outcomes[1].status else {
-        panic!("{:?}", summary.outcomes[1]);
-    };
+    let error = failure(&summary, 1);
     assert!(matches!(
         error,
         FileError::Unreadable(Unreadable::NotAFile("a named pipe"))

@@ -353,10 +353,23 @@ fn a_render_past_its_memory_budget_is_refused() {
     assert!(!folder.path().join("out.png").exists());
 }
 
+/// Drawings in the kill -9 batch.
+const KILL_BATCH_FILES: usize = 12;
+
+/// Side of the batch's last drawing, px: about five times the area of the others, so that once
+/// the other eleven SVGs are written the batch still runs for the whole of its trace, and a kill
+/// after eleven outputs finds it running even when the test is slow to look.
+const LAST_DRAWING_SIDE: u32 = 2000;
+
 /// The drawings of the kill -9 batch: rings and bars of different sizes, enough work that the
-/// kills land at different moments of the run.
+/// kills land at different moments of the run. The largest is last in the batch's order.
 fn kill_batch_inputs(folder: &Path) {
-    for (k, side) in (0..12).map(|k| (k, 500 + 40 * k)) {
+    for k in 0..KILL_BATCH_FILES {
+        let side = if k == KILL_BATCH_FILES - 1 {
+            LAST_DRAWING_SIDE
+        } else {
+            500 + 40 * k as u32
+        };
         let drawing = DynamicImage::ImageLuma8(hostile::small_drawing(side));
         let format = if k % 3 == 0 {
             ImageFormat::Jpeg
@@ -371,7 +384,6 @@ fn kill_batch_inputs(folder: &Path) {
     }
 }
 
-/// Every file under `folder`, by relative path, with its bytes.
 /// Every file under `folder` (none while the batch has not made it yet).
 fn tree(folder: &Path) -> BTreeMap<String, Vec<u8>> {
     if folder.exists() {
@@ -381,17 +393,107 @@ fn tree(folder: &Path) -> BTreeMap<String, Vec<u8>> {
     }
 }
 
+/// The SVGs in place under `folder` while a batch writes there. Names only: a temporary file
+/// listed here may be renamed before it could be read, and an entry that goes away between the
+/// listing and its look is skipped, not an error.
 fn count_svgs(folder: &Path) -> usize {
-    tree(folder)
-        .keys()
-        .filter(|path| path.ends_with(".svg"))
+    walkdir::WalkDir::new(folder)
+        .into_iter()
+        .filter_map(Result::ok)
+        .filter(|entry| entry.file_type().is_file())
+        .filter(|entry| entry.file_name().to_string_lossy().ends_with(".svg"))
         .count()
+}
+
+/// When a round kills the batch.
+#[derive(Clone, Copy, Debug)]
+enum Moment {
+    /// Once this many SVGs are in place.
+    AfterOutputs(usize),
+    /// This long after the start.
+    After(Duration),
+}
+
+impl Moment {
+    /// An earlier moment, for the next attempt of a round whose kill came after the batch had
+    /// finished (the machine was faster than the clean run, or the test slow to look).
+    fn earlier(self) -> Moment {
+        match self {
+            Moment::AfterOutputs(count) => Moment::AfterOutputs(count.saturating_sub(1)),
+            Moment::After(delay) => Moment::After(delay / 2),
+        }
+    }
+}
+
+/// Attempts per round: each later attempt kills earlier, and `After(0)` always hits.
+const KILL_ATTEMPTS: usize = 4;
+
+/// Starts the batch `args` in `folder` and kills it (SIGKILL) at `moment`: whether the kill found
+/// it still running.
+fn kill_at(moment: Moment, args: &[&str], folder: &Path, out_path: &Path) -> bool {
+    let mut child = Command::new(cli::binary())
+        .args(args)
+        .current_dir(folder)
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let started = Instant::now();
+    loop {
+        let due = match moment {
+            Moment::After(delay) => started.elapsed() >= delay,
+            Moment::AfterOutputs(count) => count_svgs(out_path) >= count,
+        };
+        let finished = child.try_wait().unwrap().is_some();
+        if due || finished || started.elapsed() > DEADLINE {
+            break;
+        }
+        thread::sleep(Duration::from_millis(2));
+    }
+    let running = child.try_wait().unwrap().is_none();
+    child.kill().unwrap(); // SIGKILL
+    child.wait().unwrap();
+    eprintln!(
+        "{moment:?}: killed after {:?} {} with {} of {KILL_BATCH_FILES} SVGs written",
+        started.elapsed(),
+        if running { "while running" } else { "too late" },
+        count_svgs(out_path)
+    );
+    running
+}
+
+/// Reruns the batch `args` after a kill: it succeeds, and `out_path` holds exactly the clean
+/// run's files, byte for byte.
+fn assert_rerun_restores(
+    args: &[&str],
+    folder: &Path,
+    out_path: &Path,
+    clean: &BTreeMap<String, Vec<u8>>,
+) {
+    let rerun = run(args, folder);
+    assert_eq!(
+        rerun.status.code(),
+        Some(0),
+        "{args:?}: {:?}",
+        stderr_lines(&rerun)
+    );
+    let after = tree(out_path);
+    assert_eq!(
+        after.keys().collect::<Vec<_>>(),
+        clean.keys().collect::<Vec<_>>(),
+        "{args:?}: other files than the clean run's"
+    );
+    for (path, bytes) in &after {
+        assert!(bytes == &clean[path], "{args:?}: {path:?} differs");
+    }
 }
 
 /// Issue 13: kill -9 at any moment of a batch, then a rerun: the output tree holds exactly the
 /// SVGs of a clean run, byte-identical, and nothing else (no temporary file, no truncated SVG).
 /// The kills land before any output, after the first, halfway, near the end, and at fractions of
-/// the clean run's time (which fall inside writes now and then).
+/// the clean run's time (which fall inside writes now and then). Every round must hit a running
+/// batch, or the test would test nothing: a round whose kill came too late is checked all the
+/// same and tried again a little earlier, in a fresh output folder.
 #[test]
 fn kill_9_at_several_moments_then_a_rerun_leaves_exactly_the_clean_outputs() {
     let root = tempfile::tempdir().unwrap();
@@ -407,77 +509,31 @@ fn kill_9_at_several_moments_then_a_rerun_leaves_exactly_the_clean_outputs() {
         stderr_lines(&clean_run)
     );
     let clean = tree(&root.path().join("clean"));
-    assert_eq!(clean.len(), 12);
+    assert_eq!(clean.len(), KILL_BATCH_FILES);
     assert!(clean.keys().all(|path| path.ends_with(".svg")));
 
-    enum Moment {
-        AfterOutputs(usize),
-        After(Duration),
-    }
     let moments = [
         Moment::After(Duration::ZERO),
         Moment::AfterOutputs(1),
-        Moment::AfterOutputs(6),
-        Moment::AfterOutputs(11),
+        Moment::AfterOutputs(KILL_BATCH_FILES / 2),
+        Moment::AfterOutputs(KILL_BATCH_FILES - 1),
         Moment::After(clean_time / 4),
         Moment::After(clean_time * 2 / 3),
     ];
-    let mut interrupted = 0;
-    for (round, moment) in moments.iter().enumerate() {
-        let out = format!("out{round}");
-        let out_path = root.path().join(&out);
-        let args = ["trace", "in", "-o", &out, "-r", "-q", "--jobs", "2"];
-        let mut child = Command::new(cli::binary())
-            .args(args)
-            .current_dir(root.path())
-            .stdout(Stdio::null())
-            .stderr(Stdio::null())
-            .spawn()
-            .unwrap();
-        let started = Instant::now();
-        loop {
-            let due = match moment {
-                Moment::After(delay) => started.elapsed() >= *delay,
-                Moment::AfterOutputs(count) => count_svgs(&out_path) >= *count,
-            };
-            let finished = child.try_wait().unwrap().is_some();
-            if due || finished || started.elapsed() > DEADLINE {
-                break;
-            }
-            thread::sleep(Duration::from_millis(2));
-        }
-        if child.try_wait().unwrap().is_none() {
-            interrupted += 1;
-        }
-        child.kill().unwrap(); // SIGKILL
-        child.wait().unwrap();
-        eprintln!(
-            "round {round}: killed after {:?} with {} of 12 SVGs written",
-            started.elapsed(),
-            count_svgs(&out_path)
+    for (round, &first) in moments.iter().enumerate() {
+        let mut moment = first;
+        let hit = (0..KILL_ATTEMPTS).any(|attempt| {
+            let out = format!("out{round}-{attempt}");
+            let out_path = root.path().join(&out);
+            let args = ["trace", "in", "-o", &out, "-r", "-q", "--jobs", "2"];
+            let running = kill_at(moment, &args, root.path(), &out_path);
+            assert_rerun_restores(&args, root.path(), &out_path, &clean);
+            moment = moment.earlier();
+            running
+        });
+        assert!(
+            hit,
+            "round {round} ({first:?}): no kill in {KILL_ATTEMPTS} attempts hit a running batch"
         );
-
-        let rerun = run(&args, root.path());
-        assert_eq!(
-            rerun.status.code(),
-            Some(0),
-            "round {round}: {:?}",
-            stderr_lines(&rerun)
-        );
-        let after = tree(&out_path);
-        assert_eq!(
-            after.keys().collect::<Vec<_>>(),
-            clean.keys().collect::<Vec<_>>(),
-            "round {round}: other files than the clean run's"
-        );
-        for (path, bytes) in &after {
-            assert!(bytes == &clean[path], "round {round}: {path:?} differs");
-        }
     }
-    // The kills by output count always land in a running batch (the last of them before its
-    // twelfth SVG); a test whose kills all came too late would test nothing.
-    assert!(
-        interrupted >= 4,
-        "only {interrupted} kills hit a running batch"
-    );
 }

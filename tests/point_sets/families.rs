@@ -433,6 +433,21 @@ fn placed(shape: Box<dyn Fn(f64) -> Xy>, centre: Xy, scale: f64) -> impl Fn(f64)
     }
 }
 
+/// A random smooth closed curve around the origin, of a size drawn from `sizes` (smallest,
+/// largest), with its smallest local feature size.
+fn smooth_loop(random: &mut SplitMix64, sizes: (f64, f64)) -> (Path, f64) {
+    let scale = random.range(sizes.0, sizes.1);
+    let path = parametric(
+        placed(smooth_shape(random), (0.0, 0.0), scale),
+        0.0,
+        TAU,
+        true,
+    );
+    let feature_sizes = local_feature_sizes(&[&path]).remove(0);
+    let smallest = feature_sizes.iter().copied().fold(f64::INFINITY, f64::min);
+    (path, smallest)
+}
+
 const EPSILONS: [f64; 3] = [0.2, 0.33, 0.47];
 
 /// Samples each path at `epsilon` × its local feature size (measured on all paths together).
@@ -502,15 +517,7 @@ fn lfs_open(random: &mut SplitMix64, k: usize) -> Instance {
 }
 
 fn non_uniform(random: &mut SplitMix64, _k: usize) -> Instance {
-    let scale = random.range(15.0, 40.0);
-    let path = parametric(
-        placed(smooth_shape(random), (0.0, 0.0), scale),
-        0.0,
-        TAU,
-        true,
-    );
-    let sizes = local_feature_sizes(&[&path]).remove(0);
-    let smallest = sizes.iter().copied().fold(f64::INFINITY, f64::min);
+    let (path, smallest) = smooth_loop(random, (15.0, 40.0));
     let widest = 0.33 * smallest;
     let ratio = random.range(5.0, 10.0);
     let waves = (1 + random.below(3)) as f64;
@@ -532,16 +539,9 @@ fn non_uniform(random: &mut SplitMix64, _k: usize) -> Instance {
 fn noise(random: &mut SplitMix64, k: usize) -> Instance {
     let sigma = [0.05, 0.1, 0.15][k % 3];
     loop {
-        let scale = random.range(12.0, 30.0);
-        let path = parametric(
-            placed(smooth_shape(random), (0.0, 0.0), scale),
-            0.0,
-            TAU,
-            true,
-        );
+        let (path, smallest) = smooth_loop(random, (12.0, 30.0));
         // Noise must stay small against the curve's feature size, or the true order is moot.
-        let sizes = local_feature_sizes(&[&path]).remove(0);
-        if sizes.iter().copied().fold(f64::INFINITY, f64::min) < 3.0 {
+        if smallest < 3.0 {
             continue;
         }
         let samples: Vec<Xy> = path
