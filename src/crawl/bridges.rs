@@ -57,11 +57,13 @@ pub(super) struct Bridge {
 
 /// The bridges chosen, and the stroke edges they cut: a bridge through a corner opens the corner,
 /// and the arm it does not go on into ends at the corner point (`cuts`: the arm's vertex next to
-/// the corner, and the corner's vertex).
+/// the corner, and the corner's vertex). Free ends that end on a bridge, and where
+/// (`attached`, see [`defer_ends_on_gaps`]).
 #[derive(Debug, Default)]
 pub(super) struct GapBridges {
     pub(super) bridges: Vec<Bridge>,
     pub(super) cuts: Vec<(u32, u32)>,
+    pub(super) attached: Vec<(u32, Point)>,
 }
 
 /// Chooses the bridges across pen lifts: pairs of ends at most a few typical gaps apart, matched
@@ -141,7 +143,7 @@ pub(super) fn match_gap_bridges(
                 .dot_radius
                 .values()
                 .fold(0.0, |a: f64, &b| a.max(b));
-    let candidates = bridge_candidates(vertices, ends, reach, spacing, stroke_width);
+    let (candidates, on_gaps) = bridge_candidates(vertices, ends, reach, spacing, stroke_width);
     let matching = Matching::new(vertices, ends, &candidates, stroke_width);
     // First pass: the drawing's typical gap. Second pass: the matching itself, with overlong
     // bridges out of the running, so that they cannot take an end from a real gap.
@@ -199,6 +201,22 @@ pub(super) fn match_gap_bridges(
             b: m.b,
             via,
         });
+    }
+    let bridged: HashSet<u32> = result.bridges.iter().flat_map(|b| [b.a, b.b]).collect();
+    let straight: HashSet<(u32, u32)> = result
+        .bridges
+        .iter()
+        .filter(|b| b.via.is_empty())
+        .map(|b| (b.a, b.b))
+        .collect();
+    let mut attached: HashSet<u32> = HashSet::new();
+    for on_gap in on_gaps {
+        if !bridged.contains(&on_gap.end)
+            && straight.contains(&(on_gap.a, on_gap.b))
+            && attached.insert(on_gap.end)
+        {
+            result.attached.push((on_gap.end, on_gap.at));
+        }
     }
     result
 }
@@ -394,16 +412,25 @@ impl OpenedCorners {
 }
 
 /// Every pair of ends at most `reach` apart that may be a bridge, and every bridge from a free
-/// end through a corner, cheapest first, each pair once.
+/// end through a corner, cheapest first, each pair once; and the ends that sit on the gap of a
+/// straight bridge ([`defer_ends_on_gaps`]).
 fn bridge_candidates(
     vertices: &StrokeVertices,
     ends: &[BridgeableEnd],
     reach: f64,
     spacing: f64,
     stroke_width: f64,
-) -> Vec<Candidate> {
+) -> (Vec<Candidate>, Vec<EndOnGap>) {
     let mut candidates: Vec<Candidate> = Vec::new();
+    let ran_into = strokes_ran_into(vertices, ends);
     for (a, b) in ends_within(ends, reach) {
+        // DECISION: a T-end is never bridged to an end of the stroke it ran into: the T already
+        // joins the two strokes, and the short overshoot of that stroke past the junction (a
+        // stem poking out below an "H"'s crossbar) would take the T round an "L" and steal
+        // the end that goes on across the stem's gap.
+        if ran_into.contains(&(a.vertex, b.stroke)) || ran_into.contains(&(b.vertex, a.stroke)) {
+            continue;
+        }
         if a.stroke == b.stroke {
             // A stroke may close on itself only if it is long enough to be a loop: the paper's
             // "more than two edges" before closing.
@@ -460,6 +487,7 @@ fn bridge_candidates(
                 through: Some(c.through),
             }),
     );
+    let on_gaps = defer_ends_on_gaps(&mut candidates, ends, stroke_width);
     candidates.sort_by(|x, y| {
         x.cost
             .total_cmp(&y.cost)
@@ -467,7 +495,128 @@ fn bridge_candidates(
             .then((x.a, x.b).cmp(&(y.a, y.b)))
     });
     candidates.dedup_by(|x, y| (x.a, x.b) == (y.a, y.b));
-    candidates
+    (candidates, on_gaps)
+}
+
+/// A free end that sits on the gap between two ends facing each other: where it would end on
+/// the straight bridge between `a` and `b` (vertices `a < b`) if that bridge is taken.
+struct EndOnGap {
+    end: u32,
+    a: u32,
+    b: u32,
+    at: Point,
+}
+
+/// Two ends facing each other this straight (degrees of turn at each) make a line that a third
+/// end may sit on.
+const ON_GAP_MAX_TURN_DEGREES: f64 = 35.0;
+
+/// An end on the gap comes in across the line: the cosine of the angle between its direction
+/// and the line is at most this (at least 55° off the line).
+const ON_GAP_MAX_ALONG_COSINE: f64 = 0.57;
+
+/// DECISION: a free end that sits on the gap between two ends facing each other across it —
+/// within a pen width of the straight bridge between them, between the two — ends on that
+/// bridge, as a T: a crossbar drawn up to a stem that has its gap right there. Its own bridges
+/// to either of the two come after their straight bridge in cost order (else the crossbar, the
+/// nearest, would take one of them round a corner and leave the stem broken), and if the
+/// straight bridge is taken, the end is attached to the point of the bridge nearest to it.
+fn defer_ends_on_gaps(
+    candidates: &mut [Candidate],
+    ends: &[BridgeableEnd],
+    stroke_width: f64,
+) -> Vec<EndOnGap> {
+    let end_at: HashMap<u32, &BridgeableEnd> = ends.iter().rev().map(|e| (e.vertex, e)).collect();
+    let mut of_vertex: HashMap<u32, Vec<usize>> = HashMap::new();
+    for (index, candidate) in candidates.iter().enumerate() {
+        of_vertex.entry(candidate.a).or_default().push(index);
+        of_vertex.entry(candidate.b).or_default().push(index);
+    }
+    let min_cos = ON_GAP_MAX_TURN_DEGREES.to_radians().cos();
+    let mut on_gaps = Vec::new();
+    let mut deferred: Vec<(usize, f64)> = Vec::new();
+    for (straight, candidate) in candidates.iter().enumerate() {
+        if candidate.corner.is_some() || candidate.through.is_some() || candidate.cost >= 1e8 {
+            continue;
+        }
+        let (a, b) = (end_at[&candidate.a], end_at[&candidate.b]);
+        let (Some(ua), Some(ub)) = (a.outward, b.outward) else {
+            continue;
+        };
+        let chord = b.at - a.at;
+        let length = chord.hypot();
+        if length == 0.0 || ua.dot(chord) < min_cos * length || ub.dot(-chord) < min_cos * length {
+            continue;
+        }
+        for &other in of_vertex[&candidate.a]
+            .iter()
+            .chain(&of_vertex[&candidate.b])
+        {
+            let pair = &candidates[other];
+            let third = if pair.a == candidate.a || pair.a == candidate.b {
+                pair.b
+            } else {
+                pair.a
+            };
+            if other == straight || pair.through.is_some() {
+                continue;
+            }
+            let end = end_at[&third];
+            if third == candidate.a || third == candidate.b || end.attached {
+                continue;
+            }
+            // It comes in across the line (a dash along the line is a piece of it).
+            let Some(uc) = end.outward else {
+                continue;
+            };
+            if uc.dot(chord).abs() > ON_GAP_MAX_ALONG_COSINE * length {
+                continue;
+            }
+            let along = (end.at - a.at).dot(chord) / (length * length);
+            let foot = a.at + chord * along;
+            if along <= 0.0 || along >= 1.0 || end.at.distance(foot) > stroke_width {
+                continue;
+            }
+            deferred.push((other, candidate.cost));
+            on_gaps.push(EndOnGap {
+                end: third,
+                a: candidate.a,
+                b: candidate.b,
+                at: foot,
+            });
+        }
+    }
+    for (index, after) in deferred {
+        candidates[index].cost += after;
+    }
+    on_gaps
+}
+
+/// For each T-end, the strokes that pass through its junction point (the stroke it ran into),
+/// as (end vertex, stroke) pairs.
+fn strokes_ran_into(vertices: &StrokeVertices, ends: &[BridgeableEnd]) -> HashSet<(u32, usize)> {
+    let junctions: HashMap<(u64, u64), Vec<u32>> =
+        ends.iter()
+            .filter(|end| end.attached)
+            .fold(HashMap::new(), |mut map, end| {
+                map.entry((end.at.x.to_bits(), end.at.y.to_bits()))
+                    .or_default()
+                    .push(end.vertex);
+                map
+            });
+    let mut ran_into = HashSet::new();
+    if junctions.is_empty() {
+        return ran_into;
+    }
+    for (stroke, of_stroke) in vertices.of_stroke.iter().enumerate() {
+        for &v in of_stroke {
+            let p = vertices.positions[v as usize];
+            if let Some(t_ends) = junctions.get(&(p.x.to_bits(), p.y.to_bits())) {
+                ran_into.extend(t_ends.iter().map(|&end| (end, stroke)));
+            }
+        }
+    }
+    ran_into
 }
 
 /// Every pair of ends (the one with the smaller vertex first, each pair once) at most `reach`

@@ -341,7 +341,11 @@ pub fn connect_strokes(strokes: &[Stroke], spacing: f64, stroke_width: f64) -> V
     let positions = &vertices.positions;
     let StrokeGraph { mut edges, ends } =
         StrokeGraph::new(strokes, &vertices, spacing, stroke_width);
-    let GapBridges { bridges, cuts } = match_gap_bridges(&vertices, &ends, spacing, stroke_width);
+    let GapBridges {
+        bridges,
+        cuts,
+        attached,
+    } = match_gap_bridges(&vertices, &ends, spacing, stroke_width);
     // An arm cut off an opened corner ends on the corner point, like a T-end.
     let cut: HashSet<(u32, u32)> = cuts.iter().flat_map(|&(a, b)| [(a, b), (b, a)]).collect();
     edges.retain(|edge| !cut.contains(edge));
@@ -356,6 +360,7 @@ pub fn connect_strokes(strokes: &[Stroke], spacing: f64, stroke_width: f64) -> V
                 .filter(|(arm, _)| !bridged.contains(arm))
                 .map(|&(arm, corner)| (arm, positions[corner as usize])),
         )
+        .chain(attached)
         .collect();
     edges.extend(bridges.iter().map(|bridge| (bridge.a, bridge.b)));
     let vias: HashMap<(u32, u32), Vec<Point>> = bridges
@@ -805,6 +810,50 @@ mod tests {
             .find(|c| c.points.contains(&Point::new(0.0, 40.0)))
             .expect("the L");
         assert_eq!(corner.points.len(), upper_and_bar.len(), "{corner:?}");
+    }
+
+    #[test]
+    fn a_t_end_is_not_bridged_to_the_stroke_it_ran_into() {
+        // An "H"'s left stem pokes 3 px out below the crossbar's junction, curling towards the
+        // crossbar's side as thinned stubs do, and then has its gap. The crossbar's T-end is
+        // 3 px from that stub's end, which lies ahead of it: much nearer than the stem's two
+        // pieces are to each other. But the T already joins the crossbar to the stem.
+        let junction = Point::new(0.0, 40.0);
+        let mut bar = open(&line((40.0, 40.0), (4.0, 40.0)));
+        bar.ends[1] = StrokeEnd::Attached(junction);
+        let mut upper = line((0.0, 0.0), (0.0, 40.0));
+        upper.push((-1.5, 42.5));
+        let upper = open(&upper);
+        assert!(upper.line.points.contains(&junction));
+        let strokes = vec![upper, bar, open(&line((0.0, 51.0), (0.0, 90.0)))];
+        let curves = connect(&strokes, Method::Strokes, 4.0, 3.0);
+        assert_eq!(curves.len(), 2, "{curves:?}");
+        assert!(
+            has_straight_curve(&curves, (0.0, -1.5), (0.0, 91.5)),
+            "{curves:?}"
+        );
+    }
+
+    #[test]
+    fn an_end_on_the_gap_between_two_facing_ends_ends_on_their_bridge() {
+        // A crossbar drawn up to a stem whose gap is right there: its end sits on the gap, 5 px
+        // from either piece, nearer than they are to each other (10 px). The stem goes on
+        // across, and the crossbar ends on it.
+        let strokes = vec![
+            open(&line((0.0, 0.0), (0.0, 36.0))),
+            open(&line((0.0, 46.0), (0.0, 90.0))),
+            open(&line((40.0, 41.0), (1.0, 41.0))),
+        ];
+        let curves = connect(&strokes, Method::Strokes, 4.0, 3.0);
+        assert_eq!(curves.len(), 2, "{curves:?}");
+        assert!(
+            has_straight_curve(&curves, (0.0, -1.5), (0.0, 91.5)),
+            "{curves:?}"
+        );
+        assert!(
+            has_straight_curve(&curves, (0.0, 41.0), (41.5, 41.0)),
+            "{curves:?}"
+        );
     }
 
     #[test]
