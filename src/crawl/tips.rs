@@ -18,17 +18,23 @@ const DETECTION_ARM_IN_PEN_WIDTHS: f64 = 3.0;
 /// Each arm's line runs through the arm from where the rounding ends, over this much of it.
 const ARM_LINE_IN_PEN_WIDTHS: f64 = 2.5;
 /// Thinning rounds the tip where the ink of the two arms merges: within half a pen width of both
-/// arms' centre lines, `pen / 2 / sin(apex / 2)` from the apex; at least one pen width, and never
-/// more than this (a 14° apex).
+/// arms' centre lines, `pen / 2 / sin(apex / 2)` from the apex; at least this much, its value at
+/// the bluntest tip taken (60°, [`MIN_TIP_TURN_DEGREES`]) ...
+const MIN_ROUNDED_IN_PEN_WIDTHS: f64 = 1.0;
+/// ... and never more than this (a 14° apex).
 const MAX_ROUNDED_IN_PEN_WIDTHS: f64 = 4.0;
+/// The new edges must lie within this much (in pen widths) of ink all along: the ink's half
+/// width, so that they run inside the stroke the pen drew.
+const INK_REACH_IN_PEN_WIDTHS: f64 = 0.5;
 /// The new corner may move this far from the curve at most (the cut is 3–9 px on the benchmark's
 /// 1.75–7 px pens; further is a different shape, not a rounded tip).
 const MAX_APEX_SHIFT_IN_PEN_WIDTHS: f64 = 3.0;
-/// Where the two new edges are checked against the ink, px apart.
+/// The new edges are checked against the ink at points this many pixels apart: half a pixel, so
+/// that no pixel they cross goes unchecked.
 const INK_CHECK_STEP_PX: f64 = 0.5;
 
 /// Puts the apex back into every acute tip of `curves` that thinning rounded off, where the ink
-/// of `mask` confirms it: both new edges lie within half a pen width of ink all along.
+/// of `mask` confirms it: both new edges lie within [`INK_REACH_IN_PEN_WIDTHS`] of ink all along.
 pub fn restore_tips(curves: &mut [Polyline], mask: &Bitmap, stroke_width: f64) {
     for curve in curves.iter_mut() {
         let tips = find_tips(curve, mask, stroke_width);
@@ -180,8 +186,11 @@ fn recover_apex(
     stroke_width: f64,
 ) -> Option<Tip> {
     let half_apex = ((180.0 - turn_degrees) / 2.0).to_radians();
-    let rounded = (stroke_width / 2.0 / half_apex.sin().max(1e-6))
-        .clamp(stroke_width, MAX_ROUNDED_IN_PEN_WIDTHS * stroke_width);
+    // The floor keeps a zero apex from dividing by zero; the clamp takes over long before it.
+    let rounded = (stroke_width / 2.0 / half_apex.sin().max(1e-6)).clamp(
+        MIN_ROUNDED_IN_PEN_WIDTHS * stroke_width,
+        MAX_ROUNDED_IN_PEN_WIDTHS * stroke_width,
+    );
     let line = ARM_LINE_IN_PEN_WIDTHS * stroke_width;
     let (near_before, keep_before) = walk.at(i, -rounded)?;
     let (far_before, _) = walk.at(i, -(rounded + line))?;
@@ -201,7 +210,7 @@ fn recover_apex(
     {
         return None;
     }
-    let reach = stroke_width / 2.0;
+    let reach = INK_REACH_IN_PEN_WIDTHS * stroke_width;
     if !segment_near_ink(mask, near_before, apex, reach)
         || !segment_near_ink(mask, apex, near_after, reach)
     {
@@ -214,12 +223,16 @@ fn recover_apex(
     })
 }
 
+/// Lines whose angle's sine is below this are parallel: they would meet about a billion times
+/// farther off than they lie apart, far beyond [`MAX_APEX_SHIFT_IN_PEN_WIDTHS`].
+const PARALLEL_SINE: f64 = 1e-9;
+
 /// Where the line through `a0 → a1` meets the line through `b0 → b1`; none for near-parallel
 /// lines.
 fn lines_meet(a0: Point, a1: Point, b0: Point, b1: Point) -> Option<Point> {
     let (da, db) = (a1 - a0, b1 - b0);
     let denominator = da.cross(db);
-    if denominator.abs() < 1e-9 * da.hypot() * db.hypot() {
+    if denominator.abs() < PARALLEL_SINE * da.hypot() * db.hypot() {
         return None;
     }
     let t = (b0 - a0).cross(db) / denominator;

@@ -310,6 +310,7 @@ fn fit_run(
     fit_run_within(data, polyline, periodic, tolerance, budget)
 }
 
+/// The unit vector from `from` to `to`; zero when they coincide.
 fn direction(from: Point, to: Point) -> Vec2 {
     let d = to - from;
     let length = d.hypot();
@@ -391,8 +392,10 @@ fn fit_run_within(
 const FIT_WORK_PER_POINT: usize = 32;
 
 /// DECISION: reparameterize by Newton's method at most this many times, and only while the error
-/// is within this factor of the tolerance (farther off, splitting is the cheaper cure).
+/// is within [`NEWTON_ERROR_FACTOR`] of the tolerance (farther off, splitting is the cheaper cure).
 const NEWTON_ITERATIONS: usize = 4;
+/// Newton's method is tried only on a cubic whose error is at most this many tolerances: nearer
+/// fits a few steps usually bring within the tolerance.
 const NEWTON_ERROR_FACTOR: f64 = 4.0;
 
 /// One cubic for `piece` (of the dense data) with the given end tangents that stays near the
@@ -428,6 +431,9 @@ fn fit_cubic(
         Err(piece.len() / 2)
     }
 }
+
+/// Each point's share of the arc length from the piece's first point (0) to its last (1); evenly
+/// spread when all points coincide.
 fn chord_length_parameters(piece: &[Point]) -> Vec<f64> {
     let mut parameters = Vec::with_capacity(piece.len());
     let mut total = 0.0;
@@ -446,6 +452,15 @@ fn chord_length_parameters(piece: &[Point]) -> Vec<f64> {
     }
     parameters
 }
+
+/// The least-squares system is singular when its determinant is below this share of the
+/// product of its diagonal terms (the tangents' terms parallel, or one of them empty): its
+/// solution would be rounding noise.
+const SINGULAR_DETERMINANT: f64 = 1e-12;
+
+/// Handles shorter than this share of the chord are degenerate (Schneider's `1.0e-6 *
+/// segLength`): the least-squares solution is replaced by handles a third of the chord long.
+const MIN_HANDLE_IN_CHORDS: f64 = 1e-6;
 
 /// The cubic from the piece's first to last point along the tangents whose handle lengths
 /// minimise the squared distance to the data at the given parameters (Schneider's
@@ -466,7 +481,9 @@ fn least_squares_cubic(piece: &[Point], parameters: &[f64], t0: Vec2, t1: Vec2) 
     }
     let determinant = c00 * c11 - c01 * c01;
     let chord = start.distance(end);
-    let (mut alpha0, mut alpha1) = if determinant.abs() > 1e-12 * (c00 * c11).max(1e-300) {
+    // The floor makes a zero determinant singular even when the diagonal terms vanish.
+    let singular = SINGULAR_DETERMINANT * (c00 * c11).max(1e-300);
+    let (mut alpha0, mut alpha1) = if determinant.abs() > singular {
         (
             (x0 * c11 - x1 * c01) / determinant,
             (c00 * x1 - c01 * x0) / determinant,
@@ -474,7 +491,7 @@ fn least_squares_cubic(piece: &[Point], parameters: &[f64], t0: Vec2, t1: Vec2) 
     } else {
         (0.0, 0.0)
     };
-    let floor = 1e-6 * chord;
+    let floor = MIN_HANDLE_IN_CHORDS * chord;
     if !(alpha0.is_finite() && alpha1.is_finite()) || alpha0 < floor || alpha1 < floor {
         alpha0 = chord / 3.0;
         alpha1 = chord / 3.0;
@@ -502,6 +519,7 @@ fn newton_step(cubic: &CubicBez, p: Point, u: f64) -> f64 {
     let first = d1.eval(u).to_vec2();
     let numerator = offset.dot(first);
     let denominator = first.dot(first) + offset.dot(d2.eval(u).to_vec2());
+    // A flat denominator (an inflection at the nearest point) would send the step off the curve.
     if denominator.abs() < 1e-12 || !denominator.is_finite() {
         return u;
     }
@@ -552,6 +570,7 @@ fn stays_near_stretch(
         let q = cubic.eval(u);
         let near = (interval.saturating_sub(1)..(interval + 2).min(intervals))
             .map(|i| {
+                // The accuracy argument is for curves: a line's nearest point is exact.
                 Line::new(stretch[i], stretch[i + 1])
                     .nearest(q, 1e-9)
                     .distance_sq
@@ -580,6 +599,11 @@ pub fn within_grown_bounds(stretch: &[Point], margin: f64, inside: &[Point]) -> 
     })
 }
 
+/// Smoothing moves a vertex this share of the way to its neighbours' midpoint: half, the
+/// [1/4, 1/2, 1/4] binomial kernel, which takes out a zig-zag from sample to sample entirely and
+/// leaves a bend spread over several samples nearly as it is.
+const SMOOTHING_PULL: f64 = 0.5;
+
 /// One pass of [1/4, 1/2, 1/4] smoothing on every vertex except the ends of an open chain and
 /// the `fixed` ones (corners): it takes out the skeleton's pixel jitter without moving corners.
 /// No vertex moves farther than `max_shift`.
@@ -597,7 +621,8 @@ fn smooth_interior(points: &[Point], closed: bool, fixed: &[usize], max_shift: f
                 return points[i];
             }
             let (before, after) = (points[(i + n - 1) % n], points[(i + 1) % n]);
-            let shift = ((before.to_vec2() + after.to_vec2()) * 0.5 - points[i].to_vec2()) * 0.5;
+            let midpoint = (before.to_vec2() + after.to_vec2()) * 0.5;
+            let shift = (midpoint - points[i].to_vec2()) * SMOOTHING_PULL;
             let length = shift.hypot();
             if length > max_shift {
                 points[i] + shift * (max_shift / length)
@@ -630,6 +655,7 @@ fn catmull_rom(points: &[Point], closed: bool) -> BezPath {
     let segments = if closed { n } else { n - 1 };
     for k in 0..segments as isize {
         let (p0, p1, p2, p3) = (at(k - 1), at(k), at(k + 1), at(k + 2));
+        // The uniform spline's tangent at p1 is (p2 − p0) / 2; a Bézier handle is a third of it.
         let c1 = p1 + (p2 - p0) / 6.0;
         let c2 = p2 - (p3 - p1) / 6.0;
         path.curve_to(c1, c2, p2);

@@ -245,6 +245,7 @@ impl SkeletonGraph {
                 } else {
                     None
                 };
+                // A branch of two points keeps both: without its node point it would be a dot.
                 if let Some(key) = end_key {
                     if skip_node_point.contains(&key) && count > 2 {
                         continue;
@@ -265,6 +266,12 @@ const SIDE_ORDER_RADIANS: f64 = 1e-6;
 /// Junctions with more ends than this are paired greedily even on an outline: the exact search
 /// below grows exponentially, and such junctions are blots, not contacts.
 const MAX_ENDS_FOR_EXACT_PAIRING: usize = 8;
+
+/// A matching replaces an equally large one only when it is cheaper by more than this: costs
+/// are sums of a few turns in [0, 2], so float rounding between two orders of summing the same
+/// pairs (about 1e-15) never counts as cheaper: the first matching the search finds wins a tie,
+/// whatever the rounding.
+const COST_TIE_MARGIN: f64 = 1e-12;
 
 /// Writes the chosen pairs of `ends` (indices into it) into `pairing`; ends left over are
 /// attached at the node. The first pair keeps the node's point, later pairs skip it so that no
@@ -322,7 +329,7 @@ fn best_matching(
         let (outside_count, outside_cost, outside) = best_matching(&rest[k + 1..], allowed, cost);
         let count = 1 + inside_count + outside_count;
         let total = cost(first, rest[k]) + inside_cost + outside_cost;
-        if count > best.0 || count == best.0 && total < best.1 - 1e-12 {
+        if count > best.0 || count == best.0 && total < best.1 - COST_TIE_MARGIN {
             let mut pairs = vec![(first, rest[k])];
             pairs.extend(inside);
             pairs.extend(outside);
