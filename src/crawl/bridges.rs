@@ -741,10 +741,6 @@ fn bridge_shape(a: BridgeEnd, b: BridgeEnd, rims: f64, stroke_width: f64) -> Opt
     }
 }
 
-/// Two ends this much apart at most (in pen widths, centre to centre) may meet in a cusp: the
-/// issue's contacts come as close as 0–1.5 pen widths, and a gap at the contact adds its own.
-const CUSP_MAX_SEPARATION_IN_PEN_WIDTHS: f64 = 3.0;
-
 /// The two sides of a band's tip are at most this far apart (pen widths, centre to centre), at
 /// the ends and behind them: their ink merged into one band.
 const BAND_TIP_MAX_SEPARATION_IN_PEN_WIDTHS: f64 = 1.0;
@@ -771,9 +767,10 @@ const CUSP_COST_OFFSET: f64 = 1e9;
 
 /// DECISION (issue 9): two free ends that point the same way, side by side, turn into each
 /// other when the ink says the outline turns back there:
-/// - a **cusp**: ends of different strokes within [`CUSP_MAX_SEPARATION_IN_PEN_WIDTHS`] whose
-///   strokes draw apart behind them (two lobes of an outline meeting, a crescent's horn) with the
-///   pen lifted at its point;
+/// - a **cusp**: ends of different strokes whose strokes draw apart behind them (two lobes of an
+///   outline meeting, a heart's notch, a crescent's horn) with the pen lifted at its point. How
+///   far apart the two ends may be is the gap limit of every bridge: the contact (0–1.5 pen
+///   widths) plus a gap at it, which on a thin pen is several pen widths;
 /// - a **band's tip**: ends within [`BAND_TIP_MAX_SEPARATION_IN_PEN_WIDTHS`] whose strokes run
 ///   together behind them, closer than a pen width: the two sides of a double strand
 ///   ([`crate::strokes`]) where the band ends (a spike, a leg, a tail) — of one stroke too, since
@@ -796,9 +793,6 @@ fn cusp_shape(
         return None;
     }
     let separation = a.at.distance(b.at);
-    if separation > CUSP_MAX_SEPARATION_IN_PEN_WIDTHS * stroke_width {
-        return None;
-    }
     // Compared at the same distance back along both strokes, as far as the shorter one reaches.
     let look_back = CUSP_LOOK_BACK_IN_PEN_WIDTHS * stroke_width;
     let common = point_behind(vertices, a, look_back)

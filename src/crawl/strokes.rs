@@ -640,6 +640,20 @@ mod tests {
     }
 
     #[test]
+    fn a_cusp_with_a_gap_at_its_point_is_joined() {
+        // The same two lobes 11 px apart where they meet (a heart's notch with the pen lifted
+        // at it on one side: the contact plus a gap, more than three pen widths), in a hand
+        // whose gaps are about 8 px: the cusp is as long as one of its gaps.
+        let strokes = vec![
+            arc((50.0, 50.0), 30.0, 180.0, 262.0, 4.0),
+            arc((50.0, 50.0), 30.0, 278.0, 360.0, 4.0),
+            arc((121.0, 50.0), 30.0, 180.0, 270.0, 4.0),
+        ];
+        let curves = connect(&strokes, Method::Strokes, 4.0, 3.0);
+        assert_eq!(curves.len(), 1, "{curves:?}");
+    }
+
+    #[test]
     fn a_t_stem_ends_on_the_bar() {
         let stem_points: Vec<(f64, f64)> = (0..11).map(|k| (10.0, 58.0 - 4.0 * k as f64)).collect();
         let mut stem = open(&stem_points);
