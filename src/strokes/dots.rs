@@ -1,44 +1,59 @@
 //! Dots: the marks a pen leaves when it touches the paper without moving (periods, the dot of an
-//! i, dotted lines). Their skeleton is a point or a stub no longer than the ink is wide; they are
-//! kept as dots, never bridged into a stroke and never dropped as stray marks.
+//! i, dotted lines). A dot is told by its ink, a round piece (its shape from the second moments
+//! of its pixels, as in M.-K. Hu, "Visual pattern recognition by moment invariants", IRE Trans.
+//! Information Theory 8, 1962), around a skeleton that is a point or a stub; dots are kept as
+//! dots, never bridged into a stroke and never dropped as stray marks.
 
-use kurbo::Point;
+use std::collections::HashSet;
+
+use kurbo::{Point, Vec2};
 
 use super::{Stroke, StrokeEnd};
 use crate::geometry::polyline::polyline_length;
-use crate::raster::bitmap::Bitmap;
-use crate::raster::radius::ink_radius;
+use crate::raster::bitmap::{Bitmap, NEIGHBOUR_OFFSETS};
 
 /// A dot: where it is and how wide its ink is.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Dot {
-    /// The middle of its skeleton.
+    /// The centroid of its ink.
     pub centre: Point,
-    /// The width of its ink, in pixels.
+    /// The diameter of a disc of its ink's area, in pixels.
     pub diameter: f64,
 }
 
-/// DECISION: a mark is a dot when it is about as wide as it is long: its skeleton no longer than
-/// the ink's radius, so the whole mark at most 1.5 times as long as wide. A dash drawn with the
-/// pen is at least about twice as long as wide (its skeleton a pen width or more); a round dot
-/// thins to a point or a stub of a pixel or two.
-const DOT_MAX_SKELETON_IN_RADII: f64 = 1.0;
+/// DECISION: a mark is a dot when it is at most 1.5 times as long as it is wide, measured on its
+/// ink: the square root of the ratio of the principal second moments of its pixels (each pixel a
+/// unit square), which is length / width for a rectangle or an ellipse. A dash drawn with the
+/// pen is at least about twice as long as wide. The ink is measured, not the skeleton: thinning
+/// a round dot 2–3 px across leaves a stub of up to three pixels, as long as the dot is wide.
+const DOT_MAX_ELONGATION: f64 = 1.5;
 
-/// The ink's radius is looked for this many pen widths out at most: dots are 1–3 pen widths wide.
-const DOT_RADIUS_SEARCH_IN_PEN_WIDTHS: f64 = 3.0;
+/// Ties count as round: a 3 × 2 pixel blob, how a round dot 2–3 px across is often binarized,
+/// is exactly 1.5 times as long as wide, and its moments must not miss that by a rounding error.
+const ELONGATION_TIE: f64 = 1e-9;
 
-/// Takes the dots out of `strokes`: free-ended open strokes whose skeleton is no longer than the
-/// ink around it is wide (`DOT_MAX_SKELETON_IN_RADII`). The others are returned in order.
+/// A mark whose skeleton is longer than this many times its width (the diameter of a disc of
+/// its area) is a curled stroke (a tiny "c" or hook, round by its moments), not a dot. A dot's
+/// skeleton is a point or a stub within it.
+const DOT_MAX_SKELETON_IN_WIDTHS: f64 = 1.0;
+
+/// Dots are 1–3 pen widths wide: a stroke whose skeleton is longer than this many pen widths is
+/// no dot, and its ink is not measured.
+const DOT_MAX_SKELETON_IN_PEN_WIDTHS: f64 = 3.0;
+
+/// Takes the dots out of `strokes`: free-ended open strokes whose ink is a round mark
+/// (`DOT_MAX_ELONGATION`) around a skeleton no longer than the mark is wide
+/// (`DOT_MAX_SKELETON_IN_WIDTHS`). The others are returned in order.
 pub fn split_dots(
     strokes: Vec<Stroke>,
     mask: &Bitmap,
     stroke_width: f64,
 ) -> (Vec<Stroke>, Vec<Dot>) {
-    let limit = DOT_RADIUS_SEARCH_IN_PEN_WIDTHS * stroke_width.max(1.0);
+    let longest_skeleton = DOT_MAX_SKELETON_IN_PEN_WIDTHS * stroke_width.max(1.0);
     let mut kept = Vec::with_capacity(strokes.len());
     let mut dots = Vec::new();
     for stroke in strokes {
-        match as_dot(&stroke, mask, limit) {
+        match as_dot(&stroke, mask, longest_skeleton) {
             Some(dot) => dots.push(dot),
             None => kept.push(stroke),
         }
@@ -46,43 +61,95 @@ pub fn split_dots(
     (kept, dots)
 }
 
-fn as_dot(stroke: &Stroke, mask: &Bitmap, limit: f64) -> Option<Dot> {
+fn as_dot(stroke: &Stroke, mask: &Bitmap, longest_skeleton: f64) -> Option<Dot> {
     let points = &stroke.line.points;
     if stroke.line.closed || stroke.ends != [StrokeEnd::Free, StrokeEnd::Free] {
         return None;
     }
-    let length = polyline_length(points, false);
+    let skeleton_length = polyline_length(points, false);
     // Cheap first: a stroke longer than the widest dot is no dot.
-    if length > DOT_MAX_SKELETON_IN_RADII * limit {
+    if skeleton_length > longest_skeleton {
         return None;
     }
-    let radius = points
-        .iter()
-        .map(|&p| ink_radius(mask, p, limit))
-        .fold(0.0, f64::max);
-    if length > DOT_MAX_SKELETON_IN_RADII * radius {
-        return None;
-    }
-    let centre = Stroke::point_at_half_length(points);
-    Some(Dot {
-        centre,
-        diameter: 2.0 * radius,
+    // A stroke with two free ends is the whole skeleton of its piece of ink.
+    let ink = InkMoments::of_component(mask, *points.first()?)?;
+    let width = ink.equivalent_diameter();
+    // Thinning shrinks a mark to one pixel only when it has no long axis at the pixel grid's
+    // resolution (a blob of five pixels in an L is as round as a pixel grid draws a dot 2 px
+    // across, though its moments say 1.55).
+    let round = points.len() == 1
+        || (ink.elongation() <= DOT_MAX_ELONGATION + ELONGATION_TIE
+            && skeleton_length <= DOT_MAX_SKELETON_IN_WIDTHS * width);
+    round.then(|| Dot {
+        centre: ink.centroid(),
+        diameter: width,
     })
 }
 
-impl Stroke {
-    /// The point halfway along `points`.
-    fn point_at_half_length(points: &[Point]) -> Point {
-        let half = 0.5 * polyline_length(points, false);
-        let mut walked = 0.0;
-        for pair in points.windows(2) {
-            let step = pair[0].distance(pair[1]);
-            if walked + step >= half && step > 0.0 {
-                return pair[0].lerp(pair[1], (half - walked) / step);
-            }
-            walked += step;
+/// The area, centroid and second moments of a piece of ink (an 8-connected component of the
+/// mask), each pixel a unit square.
+struct InkMoments {
+    area: f64,
+    sum: Vec2,
+    /// Sums of x², y² and x·y over the pixel centres.
+    sum_xx: f64,
+    sum_yy: f64,
+    sum_xy: f64,
+}
+
+impl InkMoments {
+    /// The moments of the component holding the pixel under `seed`; `None` when it is paper.
+    fn of_component(mask: &Bitmap, seed: Point) -> Option<Self> {
+        let start = (seed.x.floor() as isize, seed.y.floor() as isize);
+        if !mask.get_signed(start.0, start.1) {
+            return None;
         }
-        points[0]
+        let mut moments = Self {
+            area: 0.0,
+            sum: Vec2::ZERO,
+            sum_xx: 0.0,
+            sum_yy: 0.0,
+            sum_xy: 0.0,
+        };
+        let mut seen = HashSet::from([start]);
+        let mut to_visit = vec![start];
+        while let Some((x, y)) = to_visit.pop() {
+            let (cx, cy) = (x as f64 + 0.5, y as f64 + 0.5);
+            moments.area += 1.0;
+            moments.sum += Vec2::new(cx, cy);
+            moments.sum_xx += cx * cx;
+            moments.sum_yy += cy * cy;
+            moments.sum_xy += cx * cy;
+            for (dx, dy) in NEIGHBOUR_OFFSETS {
+                let next = (x + dx, y + dy);
+                if mask.get_signed(next.0, next.1) && seen.insert(next) {
+                    to_visit.push(next);
+                }
+            }
+        }
+        Some(moments)
+    }
+
+    fn centroid(&self) -> Point {
+        (self.sum / self.area).to_point()
+    }
+
+    /// The diameter of a disc of the same area.
+    fn equivalent_diameter(&self) -> f64 {
+        2.0 * (self.area / std::f64::consts::PI).sqrt()
+    }
+
+    /// Length over width: the square root of the ratio of the covariance's eigenvalues, with a
+    /// pixel's own spread (1/12 along each axis) added, so that one pixel is round.
+    fn elongation(&self) -> f64 {
+        let mean = self.sum / self.area;
+        let pixel_spread = 1.0 / 12.0;
+        let xx = self.sum_xx / self.area - mean.x * mean.x + pixel_spread;
+        let yy = self.sum_yy / self.area - mean.y * mean.y + pixel_spread;
+        let xy = self.sum_xy / self.area - mean.x * mean.y;
+        let half_trace = 0.5 * (xx + yy);
+        let spread = (0.25 * (xx - yy).powi(2) + xy * xy).sqrt();
+        ((half_trace + spread) / (half_trace - spread).max(f64::MIN_POSITIVE)).sqrt()
     }
 }
 
@@ -126,5 +193,83 @@ mod tests {
         assert!(strokes.is_empty());
         assert_eq!(dots.len(), 1);
         assert_eq!(dots[0].centre, Point::new(1.5, 1.5));
+    }
+
+    #[test]
+    fn a_three_by_two_blob_is_a_dot_though_it_thins_to_a_stub() {
+        // A round dot 2.3–2.6 px across drawn with a 1.8 px pen binarizes like this; its skeleton
+        // is three pixels long, longer than the ink's radius, and it used to be dropped.
+        let mask = Bitmap::from_grid(".....\n.###.\n.###.\n.....");
+        let strokes = extract_strokes(&thin(&mask), &mask, 2.0);
+        assert_eq!(strokes.len(), 1);
+        assert!(strokes[0].line.points.len() > 1, "{strokes:?}");
+        let (strokes, dots) = split_dots(strokes, &mask, 2.0);
+        assert!(strokes.is_empty(), "{strokes:?}");
+        assert_eq!(dots.len(), 1);
+        assert!(
+            dots[0].centre.distance(Point::new(2.5, 2.0)) < 1e-9,
+            "{dots:?}"
+        );
+        let area_diameter = 2.0 * (6.0 / std::f64::consts::PI).sqrt();
+        assert!((dots[0].diameter - area_diameter).abs() < 1e-9, "{dots:?}");
+    }
+
+    #[test]
+    fn a_mark_twice_as_long_as_wide_is_a_dash() {
+        let (strokes, dots) = dots_and_strokes("......\n.####.\n.####.\n......", 2.0);
+        assert!(dots.is_empty(), "{dots:?}");
+        assert_eq!(strokes.len(), 1);
+    }
+
+    #[test]
+    fn a_mark_thinned_to_one_pixel_is_a_dot_whatever_its_moments() {
+        // Five pixels in an L: 1.55 times as long as wide by its moments, but as round as a pixel
+        // grid draws a dot 2 px across.
+        let (strokes, dots) = dots_and_strokes("....\n.#..\n.##.\n.##.\n....", 2.0);
+        assert!(strokes.is_empty(), "{strokes:?}");
+        assert_eq!(dots.len(), 1);
+    }
+
+    const HOOK: &str = "
+        .........
+        ..#####..
+        .##...##.
+        .##......
+        .##......
+        .##...##.
+        ..#####..
+        .........";
+
+    #[test]
+    fn a_small_hook_is_no_dot_though_round_by_its_moments() {
+        // A "c" as wide as it is tall: its skeleton runs around it, longer than the mark is wide.
+        let (strokes, dots) = dots_and_strokes(HOOK, 5.0);
+        assert!(dots.is_empty(), "{dots:?}");
+        assert_eq!(strokes.len(), 1);
+        // The guard is what rejects it: its skeleton is within the widest dot's, and its ink is
+        // round.
+        let length = polyline_length(&strokes[0].line.points, false);
+        assert!(length <= DOT_MAX_SKELETON_IN_PEN_WIDTHS * 5.0, "{length}");
+        let mask = Bitmap::from_grid(HOOK);
+        let ink = InkMoments::of_component(&mask, strokes[0].line.points[0]).expect("ink");
+        assert!(
+            ink.elongation() <= DOT_MAX_ELONGATION,
+            "{}",
+            ink.elongation()
+        );
+    }
+
+    #[test]
+    fn elongation_is_length_over_width() {
+        let moments = |grid: &str| {
+            let mask = Bitmap::from_grid(grid);
+            InkMoments::of_component(&mask, Point::new(1.5, 1.5)).expect("ink at the seed")
+        };
+        assert!((moments("...\n.#.\n...").elongation() - 1.0).abs() < 1e-9);
+        let dash = moments("........\n.######.\n.######.\n........");
+        assert!((dash.elongation() - 3.0).abs() < 1e-9);
+        assert!(
+            InkMoments::of_component(&Bitmap::from_grid("..\n.."), Point::new(0.5, 0.5)).is_none()
+        );
     }
 }
