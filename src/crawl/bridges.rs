@@ -10,7 +10,7 @@ use std::collections::{HashMap, HashSet};
 
 use kurbo::{Point, Vec2};
 
-use super::strokes::StrokeVertices;
+use super::strokes::{point_key, PointKey, StrokeVertices};
 use super::through::{through_candidates, ThroughCorner};
 use crate::geometry::polyline::polyline_length;
 use crate::geometry::UnionFind;
@@ -118,6 +118,12 @@ const MIN_RAY_CROSSING_SINE: f64 = 0.05;
 /// The `k` of the continuation cost `length · exp(k·(θa² + θb²))`, θ in radians: a partner
 /// straight ahead is preferred to one turning by θ ≥ 35° up to 1.5 times its length.
 const TURN_COST: f64 = 1.1;
+/// The cost of going on across a gap of `length`, turning by `turn_a` and `turn_b` (radians) at
+/// its two ends: `length · exp(k·(θa² + θb²))`, k = [`TURN_COST`].
+pub(super) fn continuation_cost(length: f64, turn_a: f64, turn_b: f64) -> f64 {
+    length * (TURN_COST * (turn_a * turn_a + turn_b * turn_b)).exp()
+}
+
 /// DECISION: a bridge that turns a corner costs its length times this, so that a straight
 /// partner within this factor of the length is preferred (issue 8: "prefer the straight partner
 /// when one exists within 1.5× the length"); where two lines cross with gaps at the crossing the
@@ -475,7 +481,7 @@ fn bridge_candidates(
         }
     }
     candidates.extend(
-        through_candidates(vertices, ends, reach, spacing, stroke_width, TURN_COST)
+        through_candidates(vertices, ends, reach, spacing, stroke_width)
             .into_iter()
             .map(|c| Candidate {
                 cost: c.cost,
@@ -536,7 +542,7 @@ fn defer_ends_on_gaps(
     let mut on_gaps = Vec::new();
     let mut deferred: Vec<(usize, f64)> = Vec::new();
     for (straight, candidate) in candidates.iter().enumerate() {
-        if candidate.corner.is_some() || candidate.through.is_some() || candidate.cost >= 1e8 {
+        if candidate.corner.is_some() || candidate.through.is_some() {
             continue;
         }
         let (a, b) = (end_at[&candidate.a], end_at[&candidate.b]);
@@ -595,23 +601,20 @@ fn defer_ends_on_gaps(
 /// For each T-end, the strokes that pass through its junction point (the stroke it ran into),
 /// as (end vertex, stroke) pairs.
 fn strokes_ran_into(vertices: &StrokeVertices, ends: &[BridgeableEnd]) -> HashSet<(u32, usize)> {
-    let junctions: HashMap<(u64, u64), Vec<u32>> =
-        ends.iter()
-            .filter(|end| end.attached)
-            .fold(HashMap::new(), |mut map, end| {
-                map.entry((end.at.x.to_bits(), end.at.y.to_bits()))
-                    .or_default()
-                    .push(end.vertex);
-                map
-            });
+    let mut junctions: HashMap<PointKey, Vec<u32>> = HashMap::new();
+    for end in ends.iter().filter(|end| end.attached) {
+        junctions
+            .entry(point_key(end.at))
+            .or_default()
+            .push(end.vertex);
+    }
     let mut ran_into = HashSet::new();
     if junctions.is_empty() {
         return ran_into;
     }
     for (stroke, of_stroke) in vertices.of_stroke.iter().enumerate() {
         for &v in of_stroke {
-            let p = vertices.positions[v as usize];
-            if let Some(t_ends) = junctions.get(&(p.x.to_bits(), p.y.to_bits())) {
+            if let Some(t_ends) = junctions.get(&point_key(vertices.positions[v as usize])) {
                 ran_into.extend(t_ends.iter().map(|&end| (end, stroke)));
             }
         }
@@ -691,7 +694,7 @@ fn bridge_shape(a: BridgeEnd, b: BridgeEnd, rims: f64, stroke_width: f64) -> Opt
     let straight = (turn_a <= straight_limit && turn_b <= straight_limit).then(|| {
         let length = (distance - rims).max(0.0);
         BridgeShape {
-            cost: length * (TURN_COST * (turn_a * turn_a + turn_b * turn_b)).exp(),
+            cost: continuation_cost(length, turn_a, turn_b),
             length,
             corner: None,
             cusp: false,

@@ -169,9 +169,9 @@ pub fn connect(
 
 /// A point as a hashable key: its coordinates' bits (pixel coordinates are never -0 or NaN, so
 /// equal keys are equal points).
-type PointKey = (u64, u64);
+pub(super) type PointKey = (u64, u64);
 
-fn point_key(p: Point) -> PointKey {
+pub(super) fn point_key(p: Point) -> PointKey {
     (p.x.to_bits(), p.y.to_bits())
 }
 
@@ -302,7 +302,7 @@ impl StrokeGraph {
             graph
                 .edges
                 .extend(of_stroke.windows(2).map(|w| (w[0], w[1])));
-            if stroke.line.closed && of_stroke.len() > 2 {
+            if vertices.closed[s] {
                 graph
                     .edges
                     .push((of_stroke[of_stroke.len() - 1], of_stroke[0]));

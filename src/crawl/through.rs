@@ -10,7 +10,7 @@ use std::collections::{HashMap, HashSet};
 
 use kurbo::{Point, Vec2};
 
-use super::bridges::BridgeableEnd;
+use super::bridges::{continuation_cost, BridgeableEnd};
 use super::strokes::StrokeVertices;
 
 /// A corner of a stroke sharper than this (degrees of turn) may be where a broken line crosses
@@ -70,14 +70,14 @@ struct Corner {
 
 /// Every free end that points at a corner of a stroke (within `reach`) from the far side of
 /// one of its arms: the end's line goes straight on into that arm, and clearly not into the
-/// other. `turn_cost` is the continuation cost's `k`.
+/// other. They cost as straight bridges ([`continuation_cost`]), plus
+/// [`THROUGH_COST_OFFSET`] where the corner is not a crossing.
 pub(super) fn through_candidates(
     vertices: &StrokeVertices,
     ends: &[BridgeableEnd],
     reach: f64,
     spacing: f64,
     stroke_width: f64,
-    turn_cost: f64,
 ) -> Vec<ThroughCandidate> {
     let corners = find_corners(vertices, ARM_IN_SPACINGS * spacing);
     if corners.is_empty() || reach <= 0.0 {
@@ -121,7 +121,7 @@ pub(super) fn through_candidates(
             if turn_at_end > max_turn || turns[keep] > max_turn || turns[cut] < 2.0 * turns[keep] {
                 continue;
             }
-            let cost = distance * (turn_cost * (turn_at_end.powi(2) + turns[keep].powi(2))).exp();
+            let cost = continuation_cost(distance, turn_at_end, turns[keep]);
             candidates.push(ThroughCandidate {
                 end: end.vertex,
                 through: ThroughCorner {
