@@ -16,6 +16,7 @@ use crawltrace::stages::binarize::{binarize, BinarizeOptions};
 use crawltrace::stages::bitmap::Bitmap;
 use crawltrace::stages::clean::{clean, estimate_stroke_width};
 use crawltrace::stages::crawl::strokes::{connect, Method};
+use crawltrace::stages::crawl::tips::restore_tips;
 use crawltrace::stages::decode::{decode_image, to_gray};
 use crawltrace::stages::fit::{default_tolerance, fit_paths, sort_paths, FitOptions};
 use crawltrace::stages::geometry::Polyline;
@@ -81,7 +82,8 @@ impl Pipeline {
         );
         let spacing = default_spacing(stroke_width);
         let sampled = sample_strokes(&strokes, spacing, simplification_tolerance(stroke_width));
-        let curves = connect(&sampled, Method::Strokes, spacing, stroke_width);
+        let mut curves = connect(&sampled, Method::Strokes, spacing, stroke_width);
+        restore_tips(&mut curves, &cleaned, stroke_width);
         let fit_options = FitOptions {
             smooth: true,
             tolerance: default_tolerance(stroke_width),
@@ -258,12 +260,14 @@ fn stage_6_strokes_and_sample(bencher: Bencher, page: Page) {
 fn stage_7_reconstruct(bencher: Bencher, page: Page) {
     let p = pipeline(page);
     bencher.bench(|| {
-        connect(
+        let mut curves = connect(
             black_box(&p.sampled),
             Method::Strokes,
             p.spacing,
             p.stroke_width,
-        )
+        );
+        restore_tips(&mut curves, &p.cleaned, p.stroke_width);
+        curves
     });
 }
 
@@ -277,4 +281,30 @@ fn stage_8_fit(bencher: Bencher, page: Page) {
 fn stage_9_svg(bencher: Bencher, page: Page) {
     let drawing = &pipeline(page).drawing;
     bencher.bench(|| to_svg(black_box(drawing)));
+}
+
+/// A 1500×1500 page of black and white pixels at random, half of each, as PNG bytes: the worst
+/// page there is for every stage after binarizing (a web of ink everywhere, hundreds of thousands
+/// of strokes and bridges). A stage whose work grows faster than the page shows here first: the
+/// dot test once filled a page-wide web of ink once per short stroke, 280 s on a 4000×3000 page.
+static NOISE_PNG: LazyLock<Vec<u8>> = LazyLock::new(|| {
+    let mut state: u64 = 0x9E37_79B9_7F4A_7C15;
+    let page = image::GrayImage::from_fn(1500, 1500, |_, _| {
+        // xorshift64: any fixed sequence of fair bits will do.
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        image::Luma([if state & 1 == 0 { 0 } else { 255 }])
+    });
+    let mut bytes = Vec::new();
+    DynamicImage::ImageLuma8(page)
+        .write_to(&mut std::io::Cursor::new(&mut bytes), image::ImageFormat::Png)
+        .expect("the noise page encodes");
+    bytes
+});
+
+#[divan::bench(sample_count = 3)]
+fn noise_page_end_to_end(bencher: Bencher) {
+    let bytes = &*NOISE_PNG;
+    bencher.bench(|| trace_bytes(black_box(bytes)));
 }

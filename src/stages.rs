@@ -30,8 +30,10 @@ pub mod crawl {
     //! [`neighbours::NeighbourGraph::delaunay`]); [`reconstruct`] runs it on a point set with the
     //! paper's closing rule; [`robust`] is the robust crawl for point sets (stray points, sharp
     //! corners, open ends, thin parts); [`strokes`] runs it on sampled pen strokes, with bridges
-    //! across the gaps between their free ends.
-    pub use crate::crawl::{algorithm, neighbours, reconstruct, robust, strokes, ReconstructError};
+    //! across the gaps between their free ends; [`tips`] puts back the acute tips thinning cut.
+    pub use crate::crawl::{
+        algorithm, neighbours, reconstruct, robust, strokes, tips, ReconstructError,
+    };
 }
 
 pub mod points {

@@ -37,6 +37,12 @@ const ELONGATION_TIE: f64 = 1e-9;
 /// skeleton is a point or a stub within it.
 const DOT_MAX_SKELETON_IN_WIDTHS: f64 = 1.0;
 
+/// DECISION: no dot is wider than this (pen widths; a disc of this diameter bounds its area).
+/// Dots are 1–3 pen widths wide; a round blot twice that is still written as a dot. The bound
+/// keeps the ink of a short stroke from being filled when it belongs to a web of ink over the
+/// whole page (a page of noise took 280 s without it, 20 s with it).
+const DOT_MAX_DIAMETER_IN_PEN_WIDTHS: f64 = 6.0;
+
 /// Dots are 1–3 pen widths wide: a stroke whose skeleton is longer than this many pen widths is
 /// no dot, and its ink is not measured.
 const DOT_MAX_SKELETON_IN_PEN_WIDTHS: f64 = 3.0;
@@ -50,10 +56,12 @@ pub fn split_dots(
     stroke_width: f64,
 ) -> (Vec<Stroke>, Vec<Dot>) {
     let longest_skeleton = DOT_MAX_SKELETON_IN_PEN_WIDTHS * stroke_width.max(1.0);
+    let widest = DOT_MAX_DIAMETER_IN_PEN_WIDTHS * stroke_width.max(1.0);
+    let largest_area = std::f64::consts::FRAC_PI_4 * widest * widest;
     let mut kept = Vec::with_capacity(strokes.len());
     let mut dots = Vec::new();
     for stroke in strokes {
-        match as_dot(&stroke, mask, longest_skeleton) {
+        match as_dot(&stroke, mask, longest_skeleton, largest_area) {
             Some(dot) => dots.push(dot),
             None => kept.push(stroke),
         }
@@ -61,7 +69,7 @@ pub fn split_dots(
     (kept, dots)
 }
 
-fn as_dot(stroke: &Stroke, mask: &Bitmap, longest_skeleton: f64) -> Option<Dot> {
+fn as_dot(stroke: &Stroke, mask: &Bitmap, longest_skeleton: f64, largest_area: f64) -> Option<Dot> {
     let points = &stroke.line.points;
     if stroke.line.closed || stroke.ends != [StrokeEnd::Free, StrokeEnd::Free] {
         return None;
@@ -72,7 +80,7 @@ fn as_dot(stroke: &Stroke, mask: &Bitmap, longest_skeleton: f64) -> Option<Dot> 
         return None;
     }
     // A stroke with two free ends is the whole skeleton of its piece of ink.
-    let ink = InkMoments::of_component(mask, *points.first()?)?;
+    let ink = InkMoments::of_component(mask, *points.first()?, largest_area)?;
     let width = ink.equivalent_diameter();
     // Thinning shrinks a mark to one pixel only when it has no long axis at the pixel grid's
     // resolution (a blob of five pixels in an L is as round as a pixel grid draws a dot 2 px
@@ -98,8 +106,10 @@ struct InkMoments {
 }
 
 impl InkMoments {
-    /// The moments of the component holding the pixel under `seed`; `None` when it is paper.
-    fn of_component(mask: &Bitmap, seed: Point) -> Option<Self> {
+    /// The moments of the component holding the pixel under `seed`; `None` when it is paper or
+    /// has more than `largest_area` pixels (no dot, and not worth filling: a short stroke may be
+    /// a piece of a web of ink over the whole page).
+    fn of_component(mask: &Bitmap, seed: Point, largest_area: f64) -> Option<Self> {
         let start = (seed.x.floor() as isize, seed.y.floor() as isize);
         if !mask.get_signed(start.0, start.1) {
             return None;
@@ -116,6 +126,9 @@ impl InkMoments {
         while let Some((x, y)) = to_visit.pop() {
             let (cx, cy) = (x as f64 + 0.5, y as f64 + 0.5);
             moments.area += 1.0;
+            if moments.area > largest_area {
+                return None;
+            }
             moments.sum += Vec2::new(cx, cy);
             moments.sum_xx += cx * cx;
             moments.sum_yy += cy * cy;
@@ -251,7 +264,8 @@ mod tests {
         let length = polyline_length(&strokes[0].line.points, false);
         assert!(length <= DOT_MAX_SKELETON_IN_PEN_WIDTHS * 5.0, "{length}");
         let mask = Bitmap::from_grid(HOOK);
-        let ink = InkMoments::of_component(&mask, strokes[0].line.points[0]).expect("ink");
+        let ink =
+            InkMoments::of_component(&mask, strokes[0].line.points[0], f64::INFINITY).expect("ink");
         assert!(
             ink.elongation() <= DOT_MAX_ELONGATION,
             "{}",
@@ -260,16 +274,42 @@ mod tests {
     }
 
     #[test]
+    fn ink_wider_than_any_dot_is_not_filled() {
+        // A 12 × 12 blot with a pen of 1 px: far wider than the widest dot (6 pen widths); its
+        // ink is not measured, and its skeleton, a stub, stays a stroke.
+        let mut grid = String::new();
+        for y in 0..14 {
+            for x in 0..14 {
+                grid.push(if (1..13).contains(&x) && (1..13).contains(&y) {
+                    '#'
+                } else {
+                    '.'
+                });
+            }
+            grid.push('\n');
+        }
+        let mask = Bitmap::from_grid(&grid);
+        assert!(InkMoments::of_component(&mask, Point::new(6.5, 6.5), 100.0).is_none());
+        assert!(InkMoments::of_component(&mask, Point::new(6.5, 6.5), 144.0).is_some());
+        let (_, dots) = dots_and_strokes(&grid, 1.0);
+        assert!(dots.is_empty(), "{dots:?}");
+        let (_, dots) = dots_and_strokes(&grid, 4.0);
+        assert_eq!(dots.len(), 1, "a blot 3 pen widths across is a dot");
+    }
+
+    #[test]
     fn elongation_is_length_over_width() {
         let moments = |grid: &str| {
             let mask = Bitmap::from_grid(grid);
-            InkMoments::of_component(&mask, Point::new(1.5, 1.5)).expect("ink at the seed")
+            InkMoments::of_component(&mask, Point::new(1.5, 1.5), f64::INFINITY)
+                .expect("ink at the seed")
         };
         assert!((moments("...\n.#.\n...").elongation() - 1.0).abs() < 1e-9);
         let dash = moments("........\n.######.\n.######.\n........");
         assert!((dash.elongation() - 3.0).abs() < 1e-9);
         assert!(
-            InkMoments::of_component(&Bitmap::from_grid("..\n.."), Point::new(0.5, 0.5)).is_none()
+            InkMoments::of_component(&Bitmap::from_grid("..\n.."), Point::new(0.5, 0.5), 1.0)
+                .is_none()
         );
     }
 }
