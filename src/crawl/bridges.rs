@@ -98,6 +98,10 @@ const LOOP_GAP_MAX_IN_TYPICAL_GAPS: f64 = 3.5;
 /// ... and at most this share of the loop.
 const LOOP_GAP_MAX_SHARE_WIDE: f64 = 0.15;
 
+/// Bridges costing this much or more (the last resorts: single through-corner bridges and
+/// cusps) take no part in augmenting the matching.
+const AUGMENT_MAX_COST: f64 = 1e8;
+
 /// A straight bridge may turn by at most this much at either end, in degrees.
 const MAX_STRAIGHT_TURN_DEGREES: f64 = 60.0;
 
@@ -180,7 +184,8 @@ pub(super) fn match_gap_bridges(
     // crossing) goes on into the arm the first one cut: from the end to that arm's vertex,
     // through the corner.
     let mut opened: HashSet<u32> = HashSet::new();
-    for m in matching.run(Some(typical_gap)) {
+    let matched = matching.augment(matching.run(Some(typical_gap)), typical_gap);
+    for m in matching.uncross(matched, typical_gap, reach) {
         if let Some(through) = m.through {
             if opened.insert(through.corner) {
                 result.cuts.push((through.cut, through.corner));
@@ -354,6 +359,161 @@ impl<'a> Matching<'a> {
             matched.push(candidate);
         }
         *pending = still_pending;
+    }
+
+    /// DECISION: more ends joined beats a cheaper bridge. Greedy matching can let one bridge take
+    /// an end from each of two gaps: two lines side by side with staggered gaps, where the short
+    /// diagonal from one line's end to the other line's end costs less than either straight
+    /// bridge, and leaves both other ends open. Where an end `x` left open could take the end
+    /// `y` of a bridge `y–z`, and `z` could then take another open end `w`, the one bridge gives
+    /// way to the two (an augmenting path of the matching), both within the ordinary gap limit.
+    fn augment(&self, matched: Vec<&'a Candidate>, typical_gap: f64) -> Vec<&'a Candidate> {
+        let plain = |c: &Candidate| {
+            c.through.is_none()
+                && c.cost < AUGMENT_MAX_COST
+                && self.ink_gap(c) <= BRIDGE_MAX_IN_TYPICAL_GAPS * typical_gap
+        };
+        let mut remaining = self.slots.clone();
+        let mut partner: HashMap<u32, usize> = HashMap::new();
+        let mut result: Vec<Option<&'a Candidate>> = Vec::new();
+        for (k, m) in matched.iter().enumerate() {
+            *remaining.get_mut(&m.a).expect("end") -= 1;
+            if m.through.is_none() {
+                *remaining.get_mut(&m.b).expect("end") -= 1;
+                if plain(m) {
+                    partner.insert(m.a, k);
+                    partner.insert(m.b, k);
+                }
+            }
+            result.push(Some(m));
+        }
+        let mut of_end: HashMap<u32, Vec<&'a Candidate>> = HashMap::new();
+        for c in self.candidates.iter().filter(|c| plain(c)) {
+            of_end.entry(c.a).or_default().push(c);
+            of_end.entry(c.b).or_default().push(c);
+        }
+        let other = |c: &Candidate, v: u32| if c.a == v { c.b } else { c.a };
+        // Strokes joined by the bridges so far: a new bridge that may close a loop must be short
+        // next to it, as every loop-closing bridge (a line with a gap must not have its two outer
+        // ends take its two inner ones, closing it on itself).
+        let mut groups = StrokeGroups::new(self.vertices);
+        for m in &matched {
+            let stroke_b = m.through.map_or_else(|| self.stroke_of[&m.b], |t| t.stroke);
+            groups.join(self.stroke_of[&m.a], stroke_b, m.length);
+        }
+        let mut open: Vec<u32> = remaining
+            .iter()
+            .filter(|&(_, &slots)| slots > 0)
+            .map(|(&v, _)| v)
+            .collect();
+        open.sort_unstable();
+        for x in open {
+            if remaining[&x] == 0 {
+                continue;
+            }
+            let Some(found) = of_end.get(&x).into_iter().flatten().find_map(|&first| {
+                let y = other(first, x);
+                let &k = partner.get(&y)?;
+                let z = other(result[k]?, y);
+                if z == x || !groups.may_bridge(self.stroke_of[&x], self.stroke_of[&y], first) {
+                    return None;
+                }
+                let second = of_end.get(&z)?.iter().find(|c| {
+                    let w = other(c, z);
+                    w != x
+                        && w != y
+                        && remaining[&w] > 0
+                        && groups.may_bridge(self.stroke_of[&w], self.stroke_of[&z], c)
+                        && groups.may_bridge(self.stroke_of[&w], self.stroke_of[&x], c)
+                })?;
+                Some((k, first, *second))
+            }) else {
+                continue;
+            };
+            let (k, first, second) = found;
+            let replaced = result[k].take().expect("matched");
+            for v in [replaced.a, replaced.b] {
+                partner.remove(&v);
+            }
+            for c in [first, second] {
+                groups.join(self.stroke_of[&c.a], self.stroke_of[&c.b], c.length);
+                for v in [c.a, c.b] {
+                    *remaining.get_mut(&v).expect("end") -= 1;
+                    partner.insert(v, result.len());
+                }
+                result.push(Some(c));
+            }
+            for v in [replaced.a, replaced.b] {
+                *remaining.get_mut(&v).expect("end") += 1;
+            }
+        }
+        result.into_iter().flatten().collect()
+    }
+
+    /// DECISION: two bridges that cross each other swap partners when the other pairing of
+    /// their four ends costs less in all. Greedy matching takes the cheapest bridge first, and
+    /// between two lines side by side with staggered gaps that can be a short diagonal from one
+    /// line to the other, which leaves the other two ends to a second diagonal across it: the
+    /// lines swap places. Where two lines really cross with their gaps at the crossing, the
+    /// crossing bridges are the straight ones and stay.
+    fn uncross(
+        &self,
+        matched: Vec<&'a Candidate>,
+        typical_gap: f64,
+        reach: f64,
+    ) -> Vec<&'a Candidate> {
+        let by_pair: HashMap<(u32, u32), &'a Candidate> = self
+            .candidates
+            .iter()
+            .filter(|c| c.through.is_none() && c.cost < AUGMENT_MAX_COST)
+            .filter(|c| self.ink_gap(c) <= BRIDGE_MAX_IN_TYPICAL_GAPS * typical_gap)
+            .map(|c| ((c.a.min(c.b), c.a.max(c.b)), c))
+            .collect();
+        let candidate = |u: u32, v: u32| by_pair.get(&(u.min(v), u.max(v))).copied();
+        let position = |v: u32| self.vertices.positions[v as usize];
+        let mut result: Vec<&'a Candidate> = matched;
+        // Bridges are no longer than `reach`: crossing ones have their midpoints within it.
+        let cell = |c: &Candidate| {
+            let m = position(c.a).midpoint(position(c.b));
+            ((m.x / reach).floor() as i64, (m.y / reach).floor() as i64)
+        };
+        let mut grid: HashMap<(i64, i64), Vec<usize>> = HashMap::new();
+        for (k, c) in result.iter().enumerate() {
+            if by_pair.contains_key(&(c.a.min(c.b), c.a.max(c.b))) {
+                grid.entry(cell(c)).or_default().push(k);
+            }
+        }
+        for i in 0..result.len() {
+            let (cx, cy) = cell(result[i]);
+            let mut near: Vec<usize> = (-1..=1)
+                .flat_map(|dx| (-1..=1).map(move |dy| (cx + dx, cy + dy)))
+                .filter_map(|key| grid.get(&key))
+                .flatten()
+                .copied()
+                .filter(|&j| j > i)
+                .collect();
+            near.sort_unstable();
+            for j in near {
+                let (p, q) = (result[i], result[j]);
+                if !by_pair.contains_key(&(p.a.min(p.b), p.a.max(p.b)))
+                    || !by_pair.contains_key(&(q.a.min(q.b), q.a.max(q.b)))
+                    || !segments_cross(position(p.a), position(p.b), position(q.a), position(q.b))
+                {
+                    continue;
+                }
+                let swapped = [(p.a, q.a, p.b, q.b), (p.a, q.b, p.b, q.a)]
+                    .into_iter()
+                    .filter_map(|(u1, v1, u2, v2)| Some((candidate(u1, v1)?, candidate(u2, v2)?)))
+                    .filter(|(x, y)| x.cost + y.cost < p.cost + q.cost)
+                    .min_by(|x, y| (x.0.cost + x.1.cost).total_cmp(&(y.0.cost + y.1.cost)));
+                if let Some((x, y)) = swapped {
+                    result[i] = x;
+                    result[j] = y;
+                    break;
+                }
+            }
+        }
+        result
     }
 
     /// DECISION: the gap where the pen comes back to where it started is often the widest of an
@@ -848,6 +1008,12 @@ fn point_behind(vertices: &StrokeVertices, end: &BridgeableEnd, distance: f64) -
     (previous, walked)
 }
 
+/// Whether the segments `a0–a1` and `b0–b1` cross at a point inside both.
+fn segments_cross(a0: Point, a1: Point, b0: Point, b1: Point) -> bool {
+    let side = |p: Point, q0: Point, q1: Point| (q1 - q0).cross(p - q0);
+    side(b0, a0, a1) * side(b1, a0, a1) < 0.0 && side(a0, b0, b1) * side(a1, b0, b1) < 0.0
+}
+
 /// Where the rays from `a` along `ua` and from `b` along `ub` meet ahead of both, and the length
 /// of the path a → meeting point → b; none for (nearly) parallel rays.
 fn rays_meet(a: Point, ua: Vec2, b: Point, ub: Vec2) -> Option<(Point, f64)> {
@@ -908,6 +1074,12 @@ impl StrokeGroups {
     fn length(&mut self, stroke: usize) -> f64 {
         let root = self.root(stroke);
         self.length[root]
+    }
+
+    /// Whether `bridge` between strokes `a` and `b` is short enough next to the loop it would
+    /// close, if they are joined already ([`LOOP_GAP_MAX_SHARE`]).
+    fn may_bridge(&mut self, a: usize, b: usize, bridge: &Candidate) -> bool {
+        !self.same(a, b) || bridge.length <= LOOP_GAP_MAX_SHARE * (self.length(a) + bridge.length)
     }
 
     /// Joins the groups of strokes `a` and `b` by a bridge (a bridge within one group closes a

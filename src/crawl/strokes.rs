@@ -781,6 +781,56 @@ mod tests {
     }
 
     #[test]
+    fn lines_side_by_side_with_staggered_gaps_do_not_swap_places() {
+        // Two lines 3 px apart drawn with a thin pen, each broken once, the gaps 7 px apart
+        // along them. The diagonal from the upper line's left piece to the lower line's right
+        // piece is the cheapest bridge; taken first, it leaves the other two ends to a second
+        // diagonal across it, and the lines swap places. The other pairing costs less in all.
+        let strokes = vec![
+            open(&line((0.0, 0.0), (67.0, 0.0))),
+            open(&line((79.0, 0.0), (150.0, 0.0))),
+            open(&line((0.0, 3.0), (60.0, 3.0))),
+            open(&line((73.0, 3.0), (150.0, 3.0))),
+        ];
+        let curves = connect(&strokes, Method::Strokes, 3.0, 1.75);
+        assert_eq!(curves.len(), 2, "{curves:?}");
+        for y in [0.0, 3.0] {
+            assert!(
+                curves
+                    .iter()
+                    .any(|curve| curve.points.iter().all(|p| (p.y - y).abs() < 1.0)),
+                "no curve along y = {y}: {curves:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn a_bridge_gives_way_to_two_that_join_more_ends() {
+        // The same two lines, the lower one's gap 17 px long and ending 11 px before the upper
+        // one's. The diagonal is still the cheapest bridge; taken first, it leaves the lower
+        // line's left end with no partner within reach and the upper line's right piece open.
+        // Giving the diagonal up for the two straight bridges joins all four ends.
+        let strokes = vec![
+            open(&line((0.0, 0.0), (67.0, 0.0))),
+            open(&line((79.0, 0.0), (120.0, 0.0))),
+            open(&line((132.0, 0.0), (200.0, 0.0))),
+            open(&line((0.0, 3.0), (56.0, 3.0))),
+            open(&line((73.0, 3.0), (160.0, 3.0))),
+            open(&line((172.0, 3.0), (200.0, 3.0))),
+        ];
+        let curves = connect(&strokes, Method::Strokes, 3.0, 1.75);
+        assert_eq!(curves.len(), 2, "{curves:?}");
+        for y in [0.0, 3.0] {
+            assert!(
+                curves
+                    .iter()
+                    .any(|curve| curve.points.iter().all(|p| (p.y - y).abs() < 1.0)),
+                "no curve along y = {y}: {curves:?}"
+            );
+        }
+    }
+
+    #[test]
     fn an_x_broken_at_its_crossing_goes_straight_through() {
         // The upper arms of an "X" meet in a "V" at the crossing; the lower arms end 5.7 px
         // short of it, each pointing at it along the line of the opposite upper arm. Joined to
