@@ -617,10 +617,12 @@ fn bridge_candidates(
             BridgeEnd {
                 at: a.at,
                 outward: a.outward,
+                behind: ink_behind(vertices, &a, stroke_width),
             },
             BridgeEnd {
                 at: b.at,
                 outward: b.outward,
+                behind: ink_behind(vertices, &b, stroke_width),
             },
             rims,
             stroke_width,
@@ -810,6 +812,15 @@ fn ends_within(ends: &[BridgeableEnd], reach: f64) -> Vec<(BridgeableEnd, Bridge
 struct BridgeEnd {
     at: Point,
     outward: Option<Vec2>,
+    /// For a free end, the point a pen width back along its stroke: the end's ink runs from
+    /// there to the end.
+    behind: Option<Point>,
+}
+
+/// The point a pen width back along the stroke of the free end `end`; none for a T-end or a
+/// dot, whose ink is not a stroke ending there.
+fn ink_behind(vertices: &StrokeVertices, end: &BridgeableEnd, stroke_width: f64) -> Option<Point> {
+    (!end.attached && end.outward.is_some()).then(|| point_behind(vertices, end, stroke_width).0)
 }
 
 /// How a bridge would be drawn and what it costs.
@@ -867,9 +878,13 @@ fn bridge_shape(a: BridgeEnd, b: BridgeEnd, rims: f64, stroke_width: f64) -> Opt
             .zip(b.outward)
             .and_then(|(ua, ub)| rays_meet(a.at, ua, b.at, ub));
         // DECISION: an end whose line runs into the ink of the other end (the centre line within
-        // a pen width of that end: half for its ink, half for the line's own) reaches the corner
-        // there, whichever way that other end's stroke points: the stroke that reached the corner
-        // first ends on it, and its direction, measured where the tip curls, is the less sure.
+        // a pen width of that end, or of the last pen width of stroke behind it: half for its
+        // ink, half for the line's own) reaches the corner there, whichever way that other end's
+        // stroke points: the stroke that reached the corner first ends on it, and its direction,
+        // measured where the tip curls, is the less sure. The stroke behind counts because the
+        // pen's jitter can stop a stroke a little beside the line it turns from (a star's wide
+        // inner corner); a T-end's line runs into the stroke it is attached to anyway, so for a
+        // T-end only the other end itself counts.
         // Two ends a hair apart, pointing the same way, whose lines never meet are a band's two
         // sides where it ends (`crate::strokes`' double strands): that is the band's tip
         // (`cusp_shape`, taken last), not a corner.
@@ -879,10 +894,22 @@ fn bridge_shape(a: BridgeEnd, b: BridgeEnd, rims: f64, stroke_width: f64) -> Opt
         let end_on = |from: &BridgeEnd, to: &BridgeEnd, turn_to: f64| {
             let along = from.outward?;
             let offset = to.at - from.at;
+            // The other end's ink: its end and the pen width of stroke behind it. A T-end's line
+            // runs into the stroke it is attached to anyway: only the end itself counts for it.
+            let behind = match from.behind {
+                Some(_) => to.behind.unwrap_or(to.at) - from.at,
+                None => offset,
+            };
+            let (side_end, side_behind) = (offset.cross(along), behind.cross(along));
+            let lateral = if side_end * side_behind <= 0.0 {
+                0.0
+            } else {
+                side_end.abs().min(side_behind.abs())
+            };
             (turn_to > corner_limit
                 && !band_sides
                 && offset.dot(along) > 0.0
-                && offset.cross(along).abs() <= stroke_width)
+                && lateral <= stroke_width)
                 .then_some((to.at, distance))
         };
         [meeting, end_on(&a, &b, turn_b), end_on(&b, &a, turn_a)]

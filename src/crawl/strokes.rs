@@ -831,6 +831,22 @@ mod tests {
     }
 
     #[test]
+    fn a_wide_inner_corner_whose_end_stops_beside_the_line_is_joined() {
+        // A star's inner corner with the gap at it: one stroke comes along y = 0 to the corner
+        // at the origin; the other comes up from the lower right and, with the pen's jitter,
+        // stops 3 px above that line, more than a pen width off it, turned away (its line never
+        // meets the first one ahead). The stroke behind that end crosses the first stroke's
+        // line a pen width back: the first stroke runs into its ink, and the two are joined
+        // at the end, a corner.
+        let strokes = vec![
+            open(&line((-40.0, 0.0), (0.0, 0.0))),
+            open(&line((36.0, 17.0), (6.0, -3.0))),
+        ];
+        let curves = connect(&strokes, Method::Strokes, 4.0, 2.5);
+        assert_eq!(curves.len(), 1, "{curves:?}");
+    }
+
+    #[test]
     fn an_x_broken_at_its_crossing_goes_straight_through() {
         // The upper arms of an "X" meet in a "V" at the crossing; the lower arms end 5.7 px
         // short of it, each pointing at it along the line of the opposite upper arm. Joined to

@@ -22,11 +22,6 @@ const KNOWN_FAILURES: &[(&str, &str)] = &[
         "a wave's peak strays 3.2 px from the truth with a 1.9 px pen; the tolerance is 2.9 px",
     ),
     (
-        "squares-triangles-thick.png",
-        "a triangle's 30° tip stays open: the base's thick end curls, so its line misses the \
-         other side's end by more than a pen width and their rays meet behind the tip",
-    ),
-    (
         "star-circle-thin.png",
         "the star stays open at one 36° tip with a 1.75 px pen (the path ends 3.4 px short of \
          it; the tolerance is 2.9 px)",
