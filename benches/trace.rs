@@ -298,7 +298,10 @@ static NOISE_PNG: LazyLock<Vec<u8>> = LazyLock::new(|| {
     });
     let mut bytes = Vec::new();
     DynamicImage::ImageLuma8(page)
-        .write_to(&mut std::io::Cursor::new(&mut bytes), image::ImageFormat::Png)
+        .write_to(
+            &mut std::io::Cursor::new(&mut bytes),
+            image::ImageFormat::Png,
+        )
         .expect("the noise page encodes");
     bytes
 });

@@ -281,6 +281,43 @@ impl SkeletonGraph {
         self.nodes[node].ends.len()
     }
 
+    /// Where `branch` is a little away from its node at its start (or end), past the node's own
+    /// pixels (a quarter of `scale`), and its direction there, measured over `scale` further.
+    pub(super) fn tangent_away_from_node(
+        &self,
+        branch: usize,
+        at_start: bool,
+        scale: f64,
+    ) -> (Point, kurbo::Vec2) {
+        let points = &self.branches[branch].points;
+        let along = |k: usize| {
+            if at_start {
+                points[k]
+            } else {
+                points[points.len() - 1 - k]
+            }
+        };
+        let origin = along(0);
+        let mut from = origin;
+        let mut k = 0;
+        while k + 1 < points.len() && from.distance(origin) < scale / 4.0 {
+            k += 1;
+            from = along(k);
+        }
+        let mut target = from;
+        while k + 1 < points.len() && target.distance(from) < scale {
+            k += 1;
+            target = along(k);
+        }
+        let direction = target - from;
+        let length = direction.hypot();
+        if length > 0.0 {
+            (from, direction / length)
+        } else {
+            (origin, self.leaving_direction(branch, at_start, scale))
+        }
+    }
+
     /// The direction in which `branch` leaves its node at its start (or end), measured to the
     /// point `scale` along it.
     pub(super) fn leaving_direction(

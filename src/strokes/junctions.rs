@@ -72,11 +72,18 @@ impl SkeletonGraph {
             record_pairs(node, &ends, &pairs, pairing);
             return;
         }
-        // Going straight through means the two leaving directions are opposite (dot product −1).
+        // Going straight through means the chord between the two branches, a little away from
+        // the node, continues both of them: two curves that touch side by side (their skeletons
+        // joined by a link a pixel or two long, one node) each go on along their own line, not
+        // across to the other's, which leaves the node in the same direction but offset.
+        let tangents: Vec<(Point, kurbo::Vec2)> = ends
+            .iter()
+            .map(|&(b, s)| self.tangent_away_from_node(b, s, direction_scale))
+            .collect();
         let mut pairs: Vec<(f64, usize, usize)> = Vec::new();
         for i in 0..ends.len() {
             for j in i + 1..ends.len() {
-                pairs.push((directions[i].dot(directions[j]), i, j));
+                pairs.push((chord_straightness(tangents[i], tangents[j]), i, j));
             }
         }
         pairs.sort_by(|a, b| a.0.total_cmp(&b.0).then((a.1, a.2).cmp(&(b.1, b.2))));
@@ -257,6 +264,21 @@ impl SkeletonGraph {
             }
         }
     }
+}
+
+/// How straight the pen goes from one branch into the other through their node: −1 when the
+/// chord between the two branches' points a little away from the node continues both branches'
+/// tangents there, up to 1 for a full turn back. With both points on the node this is the
+/// plain angle between the two leaving directions.
+fn chord_straightness(a: (Point, kurbo::Vec2), b: (Point, kurbo::Vec2)) -> f64 {
+    let chord = b.0 - a.0;
+    let length = chord.hypot();
+    if length == 0.0 {
+        return a.1.dot(b.1);
+    }
+    let along = chord / length;
+    // Arriving along −a's tangent, leaving along b's; each compared with the chord.
+    -(b.1.dot(along) - a.1.dot(along)) / 2.0
 }
 
 /// Orders the two sides of a band that leave a junction in the same direction (radians): far

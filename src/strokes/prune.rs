@@ -47,6 +47,41 @@ impl SkeletonGraph {
         }
     }
 
+    /// Merges two junctions joined by a branch shorter than `max_link` into one: where two lines
+    /// cross at a slant or two curves touch, thinning splits the meeting point into two
+    /// three-way junctions a pixel or two apart. Paired one at a time, neither sees the other
+    /// line's far branch, and a line turns into the link; merged, the four branches pair as two
+    /// lines going on through.
+    pub(super) fn merge_linked_junctions(&mut self, max_link: f64) {
+        for link in 0..self.branches.len() {
+            let branch = &self.branches[link];
+            let Some((a, z)) = branch.nodes else { continue };
+            if branch.removed
+                || a == z
+                || self.degree(a) < 3
+                || self.degree(z) < 3
+                || polyline_length(&branch.points, false) > max_link
+            {
+                continue;
+            }
+            self.remove_branch(link);
+            let moved = std::mem::take(&mut self.nodes[z].ends);
+            for &(b, at_start) in &moved {
+                if let Some((start, end)) = self.branches[b].nodes.as_mut() {
+                    if at_start {
+                        *start = a;
+                    } else {
+                        *end = a;
+                    }
+                }
+            }
+            self.nodes[z].pruned = true;
+            let (pa, pz) = (self.nodes[a].position, self.nodes[z].position);
+            self.nodes[a].position = pa.midpoint(pz);
+            self.nodes[a].ends.extend(moved);
+        }
+    }
+
     /// At a junction of exactly three branches where one is a spur shorter than `max_length`
     /// pointing away from both others (each other branch leaves within 60° of the direction
     /// opposite the spur), the spur is a filled corner: it is removed and the junction moves to
