@@ -63,6 +63,7 @@ const SAMPLES: &[Sample] = &[
     sample("objects-clean", Style::Clean, 11, scenes::objects),
     sample("weather-alpha", Style::GrayAlpha, 12, scenes::weather),
     sample("shapes-16bit", Style::Gray16, 13, scenes::shapes),
+    sample("cat-fork-clean", Style::Clean, 14, scenes::touching_parts),
 ];
 
 const fn sample(name: &'static str, style: Style, seed: u64, scene: fn() -> Scene) -> Sample {

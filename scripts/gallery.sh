@@ -8,7 +8,8 @@ cargo build --release --quiet
 crawltrace=target/release/crawltrace
 out=docs/gallery
 mkdir -p "$out"
-for name in face-scan letters-clean squares-triangles-thick spiral-waves-thin silhouettes-scan weather-alpha; do
+for name in face-scan letters-clean squares-triangles-thick spiral-waves-thin silhouettes-scan weather-alpha \
+  cat-fork-clean; do
   input=samples/"$name".png
   [ -f "$input" ] || input=samples/"$name".jpg
   "$crawltrace" trace "$input" -o "$out/$name.svg" --quiet

@@ -3,7 +3,7 @@
 
 use std::f64::consts::{PI, TAU};
 
-use kurbo::{Affine, BezPath, Ellipse, Point, Shape};
+use kurbo::{Affine, BezPath, Ellipse, ParamCurve, ParamCurveDeriv, Point, Shape};
 
 use super::geometry::TrueCurve;
 
@@ -328,6 +328,102 @@ pub fn shapes() -> Scene {
             TrueCurve::from_path(&rounded.to_path(0.01)),
         ],
     )
+}
+
+/// Pen width of the clean style, which `touching_parts` is drawn for: its narrow parts are
+/// measured in it.
+const CLEAN_PEN: f64 = 3.0;
+
+/// Silhouettes whose outline comes back within a pen width of itself (issue 9): a sitting cat
+/// whose tail tapers from 3 pen widths at the haunch to a point (on its last third its sides are
+/// less than a pen width apart, so their ink is one band), and a fork whose four tines have
+/// their sides half a pen width apart (each tine's ink is one band). Not on the benchmark page
+/// ([`all`]), so that the page and the speed measured on it stay as they were.
+pub fn touching_parts() -> Scene {
+    scene(800, 500, vec![sitting_cat(), fork()])
+}
+
+/// The vertices of `path` flattened, in order (one subpath, no `Z`).
+fn flattened(data: &str) -> Vec<Point> {
+    let path = BezPath::from_svg(data).expect("scene path data is valid");
+    let mut points = Vec::new();
+    kurbo::flatten(&path, 0.01, |element| match element {
+        kurbo::PathEl::MoveTo(point) | kurbo::PathEl::LineTo(point) => points.push(point),
+        _ => unreachable!("one open subpath flattens to lines"),
+    });
+    points
+}
+
+/// A cat sitting on the ground, facing left, with pointed ears; its tail leaves the haunch just
+/// above the ground and curls up, tapering to a point.
+fn sitting_cat() -> Vec<TrueCurve> {
+    let tail_base = Point::new(322.0, 424.5);
+    let tail_base_half_width = 1.5 * CLEAN_PEN;
+    let tail = kurbo::CubicBez::new(
+        tail_base,
+        Point::new(380.0, 436.0),
+        Point::new(440.0, 442.0),
+        Point::new(468.0, 398.0),
+    );
+    let head_and_back = flattened(&format!(
+        "M100 60 L138 108 Q165 100 190 108 L222 66 L228 130 \
+         C240 165 235 195 218 215 C265 235 305 285 318 345 \
+         C326 380 330 405 {} {}",
+        tail_base.x,
+        tail_base.y - tail_base_half_width
+    ));
+    let front = flattened(&format!(
+        "M{} {} C322 434 321 438 316 440 L112 440 C100 400 112 300 138 242 \
+         C108 232 92 195 96 150",
+        tail_base.x,
+        tail_base.y + tail_base_half_width
+    ));
+    // The tail's sides, out along its upper side and back along its lower one.
+    const TAIL_SAMPLES: usize = 400;
+    let side = |t: f64, sign: f64| {
+        let tangent = tail.deriv().eval(t).to_vec2().normalize();
+        let up = kurbo::Vec2::new(tangent.y, -tangent.x);
+        tail.eval(t) + up * (sign * tail_base_half_width * (1.0 - t))
+    };
+    let upper = (1..TAIL_SAMPLES).map(|k| side(k as f64 / TAIL_SAMPLES as f64, 1.0));
+    let lower = (1..TAIL_SAMPLES)
+        .rev()
+        .map(|k| side(k as f64 / TAIL_SAMPLES as f64, -1.0));
+    let outline: Vec<Point> = head_and_back
+        .into_iter()
+        .chain(upper)
+        .chain(std::iter::once(tail.p3))
+        .chain(lower)
+        .chain(front)
+        .collect();
+    vec![TrueCurve::from_points(outline, true)]
+}
+
+/// A fork standing on its handle's rounded end, four tines up: each tine's sides are half a pen
+/// width apart (centre to centre) with a round tip; the slots between tines end in half circles.
+fn fork() -> Vec<TrueCurve> {
+    let half_tine = CLEAN_PEN / 4.0;
+    let tine_centres = [570.0, 593.0, 616.0, 639.0];
+    let (tips_y, slots_y) = (70.0, 165.0);
+    let mut outline = format!("M{} 190", tine_centres[0] - half_tine);
+    for (k, &x) in tine_centres.iter().enumerate() {
+        let (left, right) = (x - half_tine, x + half_tine);
+        outline += &format!(" L{left} {tips_y} A{half_tine} {half_tine} 0 0 1 {right} {tips_y}");
+        if let Some(&next) = tine_centres.get(k + 1) {
+            let slot_radius = (next - half_tine - right) / 2.0;
+            outline += &format!(
+                " L{right} {slots_y} A{slot_radius} {slot_radius} 0 0 0 {} {slots_y}",
+                next - half_tine
+            );
+        }
+    }
+    let right_edge = tine_centres[3] + half_tine;
+    let left_edge = tine_centres[0] - half_tine;
+    outline += &format!(
+        " L{right_edge} 190 C{right_edge} 225 616 232 614 260 L614 430 \
+         A10 10 0 0 1 594 430 L594 260 C592 232 {left_edge} 225 {left_edge} 190 Z"
+    );
+    path_at(&outline, 0.0, 0.0)
 }
 
 /// Every scene, for the large page.

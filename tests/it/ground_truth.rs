@@ -13,6 +13,13 @@ use crawltrace::{to_svg, trace, TraceOptions};
 /// to pass too, so that this list and the table in `docs/results.md` stay true.
 const KNOWN_FAILURES: &[(&str, &str)] = &[
     (
+        "cat-fork-clean.png",
+        "the cat's tail tip, a band of ink turned out and back, closes on itself as a thin loop \
+         beside the end of the cat's outline, which stays open there; two of the fork's four \
+         tines are cut across by pen lifts and not read as double strands: one comes out as a \
+         line of its own and the fork's outline ends at the other",
+    ),
+    (
         "objects-clean.png",
         "the cloud's outline strays 4.0 px from the truth at its notches with a 3 px pen; the \
          tolerance is 3.5 px",

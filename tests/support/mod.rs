@@ -40,6 +40,7 @@ pub struct Polyline {
 macro_rules! sample_tests {
     ($check:path) => {
         $crate::support::sample_tests!(@each $check,
+            cat_fork_clean => "cat-fork-clean.png",
             face_clean => "face-clean.png",
             face_scan => "face-scan.jpg",
             letters_clean => "letters-clean.png",
