@@ -780,6 +780,21 @@ mod tests {
         );
     }
 
+    /// Traces `strokes` (a thin pen) and checks that they come out as two curves, one along
+    /// y = 0 and one along y = 3.
+    fn assert_one_curve_along_each_line(strokes: &[Stroke]) {
+        let curves = connect(strokes, Method::Strokes, 3.0, 1.75);
+        assert_eq!(curves.len(), 2, "{curves:?}");
+        for y in [0.0, 3.0] {
+            assert!(
+                curves
+                    .iter()
+                    .any(|curve| curve.points.iter().all(|p| (p.y - y).abs() < 1.0)),
+                "no curve along y = {y}: {curves:?}"
+            );
+        }
+    }
+
     #[test]
     fn lines_side_by_side_with_staggered_gaps_do_not_swap_places() {
         // Two lines 3 px apart drawn with a thin pen, each broken once, the gaps 7 px apart
@@ -792,16 +807,7 @@ mod tests {
             open(&line((0.0, 3.0), (60.0, 3.0))),
             open(&line((73.0, 3.0), (150.0, 3.0))),
         ];
-        let curves = connect(&strokes, Method::Strokes, 3.0, 1.75);
-        assert_eq!(curves.len(), 2, "{curves:?}");
-        for y in [0.0, 3.0] {
-            assert!(
-                curves
-                    .iter()
-                    .any(|curve| curve.points.iter().all(|p| (p.y - y).abs() < 1.0)),
-                "no curve along y = {y}: {curves:?}"
-            );
-        }
+        assert_one_curve_along_each_line(&strokes);
     }
 
     #[test]
@@ -818,16 +824,7 @@ mod tests {
             open(&line((73.0, 3.0), (160.0, 3.0))),
             open(&line((172.0, 3.0), (200.0, 3.0))),
         ];
-        let curves = connect(&strokes, Method::Strokes, 3.0, 1.75);
-        assert_eq!(curves.len(), 2, "{curves:?}");
-        for y in [0.0, 3.0] {
-            assert!(
-                curves
-                    .iter()
-                    .any(|curve| curve.points.iter().all(|p| (p.y - y).abs() < 1.0)),
-                "no curve along y = {y}: {curves:?}"
-            );
-        }
+        assert_one_curve_along_each_line(&strokes);
     }
 
     #[test]
