@@ -432,8 +432,10 @@ impl<'a> Matching<'a> {
             };
             let (k, first, second) = found;
             let replaced = result[k].take().expect("matched");
+            // The replaced bridge's two ends are freed first: they are taken again at once.
             for v in [replaced.a, replaced.b] {
                 partner.remove(&v);
+                *remaining.get_mut(&v).expect("end") += 1;
             }
             for c in [first, second] {
                 groups.join(self.stroke_of[&c.a], self.stroke_of[&c.b], c.length);
@@ -442,9 +444,6 @@ impl<'a> Matching<'a> {
                     partner.insert(v, result.len());
                 }
                 result.push(Some(c));
-            }
-            for v in [replaced.a, replaced.b] {
-                *remaining.get_mut(&v).expect("end") += 1;
             }
         }
         result.into_iter().flatten().collect()
