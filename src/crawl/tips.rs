@@ -34,7 +34,8 @@ const MAX_APEX_SHIFT_IN_PEN_WIDTHS: f64 = 3.0;
 const INK_CHECK_STEP_PX: f64 = 0.5;
 
 /// Puts the apex back into every acute tip of `curves` that thinning rounded off, where the ink
-/// of `mask` confirms it: both new edges lie within [`INK_REACH_IN_PEN_WIDTHS`] of ink all along.
+/// of `mask` confirms it: both new edges lie within half a pen width of ink all along
+/// (`INK_REACH_IN_PEN_WIDTHS`).
 pub fn restore_tips(curves: &mut [Polyline], mask: &Bitmap, stroke_width: f64) {
     for curve in curves.iter_mut() {
         let tips = find_tips(curve, mask, stroke_width);
