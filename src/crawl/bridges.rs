@@ -46,6 +46,17 @@ struct Candidate {
     through: Option<ThroughCorner>,
 }
 
+impl Candidate {
+    /// The end across the bridge from end `v`.
+    fn other_end(&self, v: u32) -> u32 {
+        if self.a == v {
+            self.b
+        } else {
+            self.a
+        }
+    }
+}
+
 /// An accepted bridge: its two end vertices and the points the curve goes through between them,
 /// in order from `a` to `b` (a T-end's junction point, a corner put back).
 #[derive(Clone, Debug)]
@@ -184,8 +195,9 @@ pub(super) fn match_gap_bridges(
     // crossing) goes on into the arm the first one cut: from the end to that arm's vertex,
     // through the corner.
     let mut opened: HashSet<u32> = HashSet::new();
-    let matched = matching.augment(matching.run(Some(typical_gap)), typical_gap);
-    for m in matching.uncross(matched, typical_gap, reach) {
+    let rearrangeable = matching.rearrangeable(typical_gap);
+    let matched = matching.augment(matching.run(Some(typical_gap)), &rearrangeable);
+    for m in matching.uncross(matched, &rearrangeable, reach) {
         if let Some(through) = m.through {
             if opened.insert(through.corner) {
                 result.cuts.push((through.cut, through.corner));
@@ -361,18 +373,34 @@ impl<'a> Matching<'a> {
         *pending = still_pending;
     }
 
+    /// The candidates the matching may be rearranged with after the greedy run
+    /// ([`Matching::augment`], [`Matching::uncross`]): plain bridges between two ends (no
+    /// through-corner bridge, no last resort) within the ordinary gap limit.
+    fn rearrangeable(&self, typical_gap: f64) -> Rearrangeable<'a> {
+        let mut of_end: HashMap<u32, Vec<&'a Candidate>> = HashMap::new();
+        for c in self.candidates.iter().filter(|c| {
+            c.through.is_none()
+                && c.cost < AUGMENT_MAX_COST
+                && self.ink_gap(c) <= BRIDGE_MAX_IN_TYPICAL_GAPS * typical_gap
+        }) {
+            of_end.entry(c.a).or_default().push(c);
+            of_end.entry(c.b).or_default().push(c);
+        }
+        Rearrangeable { of_end }
+    }
+
     /// DECISION: more ends joined beats a cheaper bridge. Greedy matching can let one bridge take
     /// an end from each of two gaps: two lines side by side with staggered gaps, where the short
     /// diagonal from one line's end to the other line's end costs less than either straight
     /// bridge, and leaves both other ends open. Where an end `x` left open could take the end
     /// `y` of a bridge `y–z`, and `z` could then take another open end `w`, the one bridge gives
     /// way to the two (an augmenting path of the matching), both within the ordinary gap limit.
-    fn augment(&self, matched: Vec<&'a Candidate>, typical_gap: f64) -> Vec<&'a Candidate> {
-        let plain = |c: &Candidate| {
-            c.through.is_none()
-                && c.cost < AUGMENT_MAX_COST
-                && self.ink_gap(c) <= BRIDGE_MAX_IN_TYPICAL_GAPS * typical_gap
-        };
+    fn augment(
+        &self,
+        matched: Vec<&'a Candidate>,
+        rearrangeable: &Rearrangeable<'a>,
+    ) -> Vec<&'a Candidate> {
+        let of_end = &rearrangeable.of_end;
         let mut remaining = self.slots.clone();
         let mut partner: HashMap<u32, usize> = HashMap::new();
         let mut result: Vec<Option<&'a Candidate>> = Vec::new();
@@ -380,19 +408,13 @@ impl<'a> Matching<'a> {
             *remaining.get_mut(&m.a).expect("end") -= 1;
             if m.through.is_none() {
                 *remaining.get_mut(&m.b).expect("end") -= 1;
-                if plain(m) {
+                if rearrangeable.contains(m) {
                     partner.insert(m.a, k);
                     partner.insert(m.b, k);
                 }
             }
             result.push(Some(m));
         }
-        let mut of_end: HashMap<u32, Vec<&'a Candidate>> = HashMap::new();
-        for c in self.candidates.iter().filter(|c| plain(c)) {
-            of_end.entry(c.a).or_default().push(c);
-            of_end.entry(c.b).or_default().push(c);
-        }
-        let other = |c: &Candidate, v: u32| if c.a == v { c.b } else { c.a };
         // Strokes joined by the bridges so far: a new bridge that may close a loop must be short
         // next to it, as every loop-closing bridge (a line with a gap must not have its two outer
         // ends take its two inner ones, closing it on itself).
@@ -412,14 +434,14 @@ impl<'a> Matching<'a> {
                 continue;
             }
             let Some(found) = of_end.get(&x).into_iter().flatten().find_map(|&first| {
-                let y = other(first, x);
+                let y = first.other_end(x);
                 let &k = partner.get(&y)?;
-                let z = other(result[k]?, y);
+                let z = result[k]?.other_end(y);
                 if z == x || !groups.may_bridge(self.stroke_of[&x], self.stroke_of[&y], first) {
                     return None;
                 }
                 let second = of_end.get(&z)?.iter().find(|c| {
-                    let w = other(c, z);
+                    let w = c.other_end(z);
                     w != x
                         && w != y
                         && remaining[&w] > 0
@@ -458,17 +480,9 @@ impl<'a> Matching<'a> {
     fn uncross(
         &self,
         matched: Vec<&'a Candidate>,
-        typical_gap: f64,
+        rearrangeable: &Rearrangeable<'a>,
         reach: f64,
     ) -> Vec<&'a Candidate> {
-        let by_pair: HashMap<(u32, u32), &'a Candidate> = self
-            .candidates
-            .iter()
-            .filter(|c| c.through.is_none() && c.cost < AUGMENT_MAX_COST)
-            .filter(|c| self.ink_gap(c) <= BRIDGE_MAX_IN_TYPICAL_GAPS * typical_gap)
-            .map(|c| ((c.a.min(c.b), c.a.max(c.b)), c))
-            .collect();
-        let candidate = |u: u32, v: u32| by_pair.get(&(u.min(v), u.max(v))).copied();
         let position = |v: u32| self.vertices.positions[v as usize];
         let mut result: Vec<&'a Candidate> = matched;
         // Bridges are no longer than `reach`: crossing ones have their midpoints within it.
@@ -478,7 +492,7 @@ impl<'a> Matching<'a> {
         };
         let mut grid: HashMap<(i64, i64), Vec<usize>> = HashMap::new();
         for (k, c) in result.iter().enumerate() {
-            if by_pair.contains_key(&(c.a.min(c.b), c.a.max(c.b))) {
+            if rearrangeable.contains(c) {
                 grid.entry(cell(c)).or_default().push(k);
             }
         }
@@ -494,15 +508,20 @@ impl<'a> Matching<'a> {
             near.sort_unstable();
             for j in near {
                 let (p, q) = (result[i], result[j]);
-                if !by_pair.contains_key(&(p.a.min(p.b), p.a.max(p.b)))
-                    || !by_pair.contains_key(&(q.a.min(q.b), q.a.max(q.b)))
+                if !rearrangeable.contains(p)
+                    || !rearrangeable.contains(q)
                     || !segments_cross(position(p.a), position(p.b), position(q.a), position(q.b))
                 {
                     continue;
                 }
                 let swapped = [(p.a, q.a, p.b, q.b), (p.a, q.b, p.b, q.a)]
                     .into_iter()
-                    .filter_map(|(u1, v1, u2, v2)| Some((candidate(u1, v1)?, candidate(u2, v2)?)))
+                    .filter_map(|(u1, v1, u2, v2)| {
+                        Some((
+                            rearrangeable.between(u1, v1)?,
+                            rearrangeable.between(u2, v2)?,
+                        ))
+                    })
                     .filter(|(x, y)| x.cost + y.cost < p.cost + q.cost)
                     .min_by(|x, y| (x.0.cost + x.1.cost).total_cmp(&(y.0.cost + y.1.cost)));
                 if let Some((x, y)) = swapped {
@@ -542,6 +561,28 @@ impl<'a> Matching<'a> {
                 && v != candidate.b
                 && (p.distance(pa) < reach || p.distance(pb) < reach)
         })
+    }
+}
+
+/// The candidates a matching may be rearranged with, by end ([`Matching::rearrangeable`]).
+struct Rearrangeable<'a> {
+    of_end: HashMap<u32, Vec<&'a Candidate>>,
+}
+
+impl<'a> Rearrangeable<'a> {
+    /// The candidate between ends `u` and `v`, if it is one of these.
+    fn between(&self, u: u32, v: u32) -> Option<&'a Candidate> {
+        self.of_end
+            .get(&u)?
+            .iter()
+            .copied()
+            .find(|c| c.other_end(u) == v)
+    }
+
+    /// Whether the bridge between `candidate`'s two ends is one of these (candidates come once
+    /// per pair of ends).
+    fn contains(&self, candidate: &Candidate) -> bool {
+        self.between(candidate.a, candidate.b).is_some()
     }
 }
 

@@ -75,6 +75,15 @@ fn is_node_pixel(skeleton: &Bitmap, (x, y): (usize, usize)) -> bool {
     skeleton.neighbourhood(x, y).count_ones() != 2
 }
 
+/// The `k`-th of a branch's `points` counted from its node at its start (or at its end).
+fn nth_from_node(points: &[Point], at_start: bool, k: usize) -> Point {
+    if at_start {
+        points[k]
+    } else {
+        points[points.len() - 1 - k]
+    }
+}
+
 impl SkeletonGraph {
     /// The graph of `skeleton`: its nodes, the branches between them, and the loops with no node.
     pub(super) fn trace(skeleton: &Bitmap) -> Self {
@@ -290,13 +299,7 @@ impl SkeletonGraph {
         scale: f64,
     ) -> (Point, kurbo::Vec2) {
         let points = &self.branches[branch].points;
-        let along = |k: usize| {
-            if at_start {
-                points[k]
-            } else {
-                points[points.len() - 1 - k]
-            }
-        };
+        let along = |k: usize| nth_from_node(points, at_start, k);
         let origin = along(0);
         let mut from = origin;
         let mut k = 0;
@@ -327,18 +330,8 @@ impl SkeletonGraph {
         scale: f64,
     ) -> kurbo::Vec2 {
         let points = &self.branches[branch].points;
-        let origin = if at_start {
-            points[0]
-        } else {
-            points[points.len() - 1]
-        };
-        let along = |k: usize| {
-            if at_start {
-                points[k]
-            } else {
-                points[points.len() - 1 - k]
-            }
-        };
+        let along = |k: usize| nth_from_node(points, at_start, k);
+        let origin = along(0);
         let mut target = origin;
         for k in 0..points.len() {
             target = along(k);

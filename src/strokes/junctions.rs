@@ -60,14 +60,14 @@ impl SkeletonGraph {
         if ends.len() < 2 {
             return;
         }
-        let directions: Vec<kurbo::Vec2> = ends
-            .iter()
-            .map(|&(b, s)| self.leaving_direction(b, s, direction_scale))
-            .collect();
         let on_outline = ends
             .iter()
             .any(|&(b, _)| self.branches[b].strand_of.is_some());
         if on_outline && ends.len() <= MAX_ENDS_FOR_EXACT_PAIRING {
+            let directions: Vec<kurbo::Vec2> = ends
+                .iter()
+                .map(|&(b, s)| self.leaving_direction(b, s, direction_scale))
+                .collect();
             let pairs = self.pairs_without_crossing(&ends, &directions);
             record_pairs(node, &ends, &pairs, pairing);
             return;
