@@ -12,7 +12,7 @@ use kurbo::{Point, Vec2};
 
 use super::strokes::{point_key, PointKey, StrokeVertices};
 use super::through::{through_candidates, ThroughCorner};
-use crate::geometry::polyline::polyline_length;
+use crate::geometry::polyline::{distance_to_segment, polyline_length};
 use crate::geometry::UnionFind;
 use crate::strokes::MIN_LOOP_SAMPLES;
 
@@ -990,6 +990,11 @@ const CUSP_MIN_STROKE_IN_PEN_WIDTHS: f64 = 3.0;
 /// The two ends of a cusp point the same way within this angle (degrees).
 const CUSP_MAX_ANGLE_DEGREES: f64 = 45.0;
 
+/// The end of a tip's short side may lie this many band widths
+/// ([`BAND_TIP_MAX_SEPARATION_IN_PEN_WIDTHS`]) across from the long side: a spike's sides are
+/// up to about two pen widths apart where one of them stops short of the tip.
+const STAGGERED_TIP_MAX_ACROSS_IN_BAND_WIDTHS: f64 = 2.0;
+
 /// DECISION: a cusp bridge costs this plus its length: more than any other bridge, so that it
 /// is only taken by ends that no continuation took (the sides of a narrow neck with gaps across
 /// it go on across their gaps, and are not sealed).
@@ -1004,7 +1009,13 @@ const CUSP_COST_OFFSET: f64 = 1e9;
 /// - a **band's tip**: ends within [`BAND_TIP_MAX_SEPARATION_IN_PEN_WIDTHS`] whose strokes run
 ///   together behind them, closer than a pen width: the two sides of a double strand
 ///   ([`crate::strokes`]) where the band ends (a spike, a leg, a tail) — of one stroke too, since
-///   a spike on a closed outline is one stroke out and back.
+///   a spike on a closed outline is one stroke out and back;
+/// - a **staggered tip**: ends of different strokes where one side of a spike or a finger stops
+///   short of the tip (the pen lifted on that side there) and lies against the other side,
+///   which runs on to the tip; the two draw apart further back, at the spike's base
+///   ([`staggered_tip`]). Two lines side by side that end staggered never draw apart, and are
+///   not joined (measured on the benchmark: without that condition the rule joined 13 of the
+///   parallel-lines family's pairs).
 ///
 /// Good continuation never offers these bridges (they turn by 180°), and they come last: an end
 /// that can go on across a gap does so (the sides of a band cut by a gap go on to the band's
@@ -1036,19 +1047,87 @@ fn cusp_shape(
     let cusp = a.stroke != b.stroke
         && common >= CUSP_MIN_STROKE_IN_PEN_WIDTHS * stroke_width
         && behind >= separation + CUSP_MIN_DIVERGENCE_IN_PEN_WIDTHS * stroke_width;
-    if !band_tip && !cusp {
-        return None;
-    }
     // Thinning ends each stroke about half a pen width inside its ink: the outline turns back
-    // that far ahead of the two ends.
-    let ahead = (ua + ub).normalize() * (stroke_width / 2.0);
-    let apex = a.at.midpoint(b.at) + ahead;
+    // that far ahead of the two ends, or of the side that reaches the tip.
+    let apex = if band_tip || cusp {
+        a.at.midpoint(b.at) + (ua + ub).normalize() * (stroke_width / 2.0)
+    } else if a.stroke == b.stroke {
+        return None;
+    } else if staggered_tip(vertices, a, b, stroke_width) {
+        b.at + ub * (stroke_width / 2.0)
+    } else if staggered_tip(vertices, b, a, stroke_width) {
+        a.at + ua * (stroke_width / 2.0)
+    } else {
+        return None;
+    };
     Some(BridgeShape {
         cost: CUSP_COST_OFFSET + separation,
         length: a.at.distance(apex) + apex.distance(b.at),
         corner: Some(apex),
         cusp: true,
     })
+}
+
+/// Whether `behind` is the side of a tip that stops short of it, with `ahead` the side that
+/// reaches it (a spike or a finger whose pen lifted on one side at its tip): `ahead`'s end lies
+/// level with or beyond `behind`'s, `behind`'s end lies within two band widths of `ahead`'s
+/// stroke (measured across to it, since the gap puts one end a gap's length behind the other),
+/// and somewhere behind the end the two strokes draw at least a pen width further apart than
+/// that (the spike's base, where its sides turn away from each other). Two lines drawn side by
+/// side that end staggered keep their distance all along, and stay two lines.
+fn staggered_tip(
+    vertices: &StrokeVertices,
+    behind: &BridgeableEnd,
+    ahead: &BridgeableEnd,
+    stroke_width: f64,
+) -> bool {
+    let Some(direction) = behind.outward else {
+        return false;
+    };
+    if (ahead.at - behind.at).dot(direction) < -stroke_width / 2.0 {
+        return false;
+    }
+    let other_side = stroke_points_from(vertices, ahead);
+    if other_side.len() < 2 {
+        return false;
+    }
+    // The distance across to the other side where the foot falls on it, not past its far end
+    // (there the other stroke has merely run out).
+    let far_end = other_side[other_side.len() - 1];
+    let across = |p: Point| -> Option<f64> {
+        let (nearest, segment) = other_side
+            .windows(2)
+            .enumerate()
+            .map(|(k, w)| (distance_to_segment(p, kurbo::Line::new(w[0], w[1])), k))
+            .min_by(|x, y| x.0.total_cmp(&y.0))?;
+        let on_far_end = segment + 2 == other_side.len() && p.distance(far_end) <= nearest + 1e-9;
+        (!on_far_end).then_some(nearest)
+    };
+    let Some(at_end) = across(behind.at) else {
+        return false;
+    };
+    if at_end
+        > STAGGERED_TIP_MAX_ACROSS_IN_BAND_WIDTHS
+            * BAND_TIP_MAX_SEPARATION_IN_PEN_WIDTHS
+            * stroke_width
+    {
+        return false;
+    }
+    stroke_points_from(vertices, behind)
+        .into_iter()
+        .filter_map(across)
+        .any(|d| d >= at_end + CUSP_MIN_DIVERGENCE_IN_PEN_WIDTHS * stroke_width)
+}
+
+/// The points of `end`'s stroke, from that end to the other.
+fn stroke_points_from(vertices: &StrokeVertices, end: &BridgeableEnd) -> Vec<Point> {
+    let of_stroke = &vertices.of_stroke[end.stroke];
+    let points = of_stroke.iter().map(|&v| vertices.positions[v as usize]);
+    if of_stroke.first() == Some(&end.vertex) {
+        points.collect()
+    } else {
+        points.rev().collect()
+    }
 }
 
 /// The point `distance` back along the stroke of the free end `end` (along its samples, between

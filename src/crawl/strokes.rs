@@ -727,6 +727,44 @@ mod tests {
         assert!((highest - tip.1).abs() < 3.0, "the tip is at {highest}");
     }
 
+    #[test]
+    fn a_spike_whose_side_stops_short_of_the_tip_turns_back_there() {
+        // A narrow spike on a base line: its sides run 5 px apart (1.7 pen widths) up to where
+        // the right side stops, 11 px short of the tip (the pen lifted on that side there), its
+        // line passing 5 px beside the left side's end. The right side's end lies against the
+        // left side, and the two draw apart behind it at the spike's base: the outline turns
+        // back at the tip, one curve out and back.
+        let mut left = dashes(&[(0.0, 60.0), (45.0, 60.0), (45.0, 1.0)], 1000.0, 0.0);
+        let right = dashes(
+            &[(50.0, 12.0), (50.0, 50.0), (56.0, 60.0), (100.0, 60.0)],
+            1000.0,
+            0.0,
+        );
+        left.extend(right);
+        assert_eq!(left.len(), 2);
+        // A dashed line elsewhere on the page, whose 10 px gaps make the hand's typical gap.
+        let dashed = dashes(&[(0.0, 200.0), (200.0, 200.0)], 30.0, 10.0);
+        let count = dashed.len();
+        left.extend(dashed);
+        let curves = connect(&left, Method::Strokes, 4.0, 3.0);
+        assert_eq!(curves.len(), 2, "{curves:?}");
+        let spike = curves
+            .iter()
+            .find(|c| c.points[0].y < 100.0)
+            .expect("the spike");
+        assert!(!spike.closed);
+        assert!(spike.points.iter().any(|p| p.y < 2.0) && spike.points.iter().any(|p| p.x > 99.0));
+        assert!(count > 4);
+        // The same two sides without the base, 5 px apart all along: two lines side by side
+        // that end staggered, not a spike.
+        let strokes = vec![
+            dashes(&[(45.0, 60.0), (45.0, 1.0)], 1000.0, 0.0).remove(0),
+            dashes(&[(50.0, 12.0), (50.0, 60.0)], 1000.0, 0.0).remove(0),
+        ];
+        let curves = connect(&strokes, Method::Strokes, 4.0, 3.0);
+        assert_eq!(curves.len(), 2, "{curves:?}");
+    }
+
     /// Points every 4 px along a straight line from `from` to `to`.
     fn line(from: (f64, f64), to: (f64, f64)) -> Vec<(f64, f64)> {
         let length = Point::from(from).distance(Point::from(to));

@@ -139,7 +139,8 @@ fn douglas_peucker(points: &[Point], first: usize, last: usize, tolerance: f64, 
     }
 }
 
-fn distance_to_segment(p: Point, line: kurbo::Line) -> f64 {
+/// The distance from `p` to the nearest point of the segment `line`.
+pub(crate) fn distance_to_segment(p: Point, line: kurbo::Line) -> f64 {
     use kurbo::ParamCurveNearest;
     // The accuracy argument is for curves: a line's nearest point is computed exactly.
     line.nearest(p, 1e-9).distance_sq.sqrt()
