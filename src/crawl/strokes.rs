@@ -728,6 +728,21 @@ mod tests {
     }
 
     #[test]
+    fn facing_arcs_with_one_pen_lift_stay_two_open_curves() {
+        // "( )": two arcs of one circle whose openings (18 px ink to ink) are three times the one
+        // pen lift in the drawing (5 px, in the left arc). The openings are not the hand's
+        // typical gap, even though they are two of its three gaps.
+        let strokes = vec![
+            arc((100.0, 100.0), 40.0, -75.0, 75.0, 4.0),
+            arc((100.0, 100.0), 40.0, 105.0, 175.0, 4.0),
+            arc((100.0, 100.0), 40.0, 187.0, 255.0, 4.0),
+        ];
+        let curves = connect(&strokes, Method::Strokes, 4.0, 3.0);
+        assert_eq!(curves.len(), 2, "{curves:?}");
+        assert!(curves.iter().all(|c| !c.closed));
+    }
+
+    #[test]
     fn a_spike_whose_side_stops_short_of_the_tip_turns_back_there() {
         // A narrow spike on a base line: its sides run 5 px apart (1.7 pen widths) up to where
         // the right side stops, 11 px short of the tip (the pen lifted on that side there), its
