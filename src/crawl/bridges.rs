@@ -84,8 +84,8 @@ pub(super) struct GapBridges {
 /// end cannot be taken by a farther end that happens to be crawled first (the end of an open
 /// mouth stealing the end of a nearby face outline).
 ///
-/// DECISION: a bridge may be at most twice the drawing's typical gap, the median matched length
-/// clamped to one to three sample spacings. Pen lifts in one sketch are of a similar size;
+/// DECISION: a bridge may be at most twice the drawing's typical gap (the mean pen lift below the
+/// first opening, [`typical_gap`]), clamped to one to three sample spacings. Pen lifts in one sketch are of a similar size;
 /// bridges much longer than the typical one join things the person drew apart (two eyebrows, the
 /// corners of an open mouth). The clamp keeps the rule sane when almost all ends are true open
 /// ends (a drawing in continuous strokes) or when there is no gap at all.
