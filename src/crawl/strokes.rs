@@ -728,6 +728,29 @@ mod tests {
     }
 
     #[test]
+    fn an_acute_corner_whose_line_misses_the_other_end_by_a_little_is_joined_there() {
+        // The top of a "V" 40° wide with its gap at the corner: the left arm runs straight up to
+        // the corner; the right arm stops 16 px short of it, and its line (a little off, as a
+        // stroke end's direction is) passes 3.3 px beside the corner with a 3 px pen. The two
+        // lines meet 5 px past the left arm's end, a bridge longer than twice the hand's typical
+        // gap (a dashed line elsewhere, with 8 px gaps); the corner is the left arm's end.
+        let mut strokes = dashes(&[(0.0, 100.0), (0.0, 0.0)], 1000.0, 0.0);
+        strokes.extend(dashes(&[(12.81, 10.14), (70.7, 79.1)], 1000.0, 0.0));
+        strokes.extend(dashes(&[(0.0, 200.0), (200.0, 200.0)], 30.0, 11.0));
+        let curves = connect(&strokes, Method::Strokes, 4.0, 3.0);
+        let corner = curves
+            .iter()
+            .find(|c| c.points.iter().any(|p| p.y < 50.0))
+            .expect("the V");
+        assert!(
+            corner.points.iter().any(|p| p.x > 60.0)
+                && corner.points.iter().any(|p| p.x < 1.0 && p.y > 90.0),
+            "{curves:?}"
+        );
+        assert!(!corner.closed);
+    }
+
+    #[test]
     fn facing_arcs_with_one_pen_lift_stay_two_open_curves() {
         // "( )": two arcs of one circle whose openings (18 px ink to ink) are three times the one
         // pen lift in the drawing (5 px, in the left arc). The openings are not the hand's
