@@ -84,9 +84,9 @@ pub(super) struct GapBridges {
 /// end cannot be taken by a farther end that happens to be crawled first (the end of an open
 /// mouth stealing the end of a nearby face outline).
 ///
-/// DECISION: a bridge may be at most twice the drawing's typical gap (the mean pen lift below the
-/// first opening, [`typical_gap`]), clamped to one to three sample spacings. Pen lifts in one sketch are of a similar size;
-/// bridges much longer than the typical one join things the person drew apart (two eyebrows, the
+/// DECISION: a bridge may be at most twice the drawing's typical gap (the mean pen lift below
+/// the first opening, [`typical_gap`]), clamped to one to three sample spacings. Pen lifts in one
+/// sketch are of a similar size; bridges much longer than the typical one join things the person drew apart (two eyebrows, the
 /// corners of an open mouth). The clamp keeps the rule sane when almost all ends are true open
 /// ends (a drawing in continuous strokes) or when there is no gap at all.
 /// DECISION: a bridge that closes a loop may be at most this share of the loop (bridge
@@ -180,14 +180,24 @@ pub(super) fn match_gap_bridges(
         gaps.sort_by(f64::total_cmp);
         gaps
     };
+    let settled_under = |typical_gap: f64| {
+        let rearrangeable = matching.rearrangeable(typical_gap);
+        matching.uncross(
+            matching.augment(matching.run(Some(typical_gap)), &rearrangeable),
+            &rearrangeable,
+            reach,
+        )
+    };
     let rough = rough_typical_gap(&free_gaps(&matching.run(None)), spacing);
-    let rough_rearrangeable = matching.rearrangeable(rough);
-    let settled = matching.uncross(
-        matching.augment(matching.run(Some(rough)), &rough_rearrangeable),
-        &rough_rearrangeable,
-        reach,
-    );
+    let settled = settled_under(rough);
     let typical_gap = typical_gap(&free_gaps(&settled), spacing);
+    // The matching is a function of the typical gap alone: where the rough one was right, the
+    // settled matching is the matching.
+    let matched = if typical_gap == rough {
+        settled
+    } else {
+        settled_under(typical_gap)
+    };
     let junction_of: HashMap<u32, Point> = ends
         .iter()
         .filter(|end| end.attached)
@@ -198,9 +208,7 @@ pub(super) fn match_gap_bridges(
     // crossing) goes on into the arm the first one cut: from the end to that arm's vertex,
     // through the corner.
     let mut opened: HashSet<u32> = HashSet::new();
-    let rearrangeable = matching.rearrangeable(typical_gap);
-    let matched = matching.augment(matching.run(Some(typical_gap)), &rearrangeable);
-    for m in matching.uncross(matched, &rearrangeable, reach) {
+    for m in matched {
         if let Some(through) = m.through {
             if opened.insert(through.corner) {
                 result.cuts.push((through.cut, through.corner));
@@ -569,26 +577,30 @@ impl<'a> Matching<'a> {
 
 /// A rough typical gap, from the gaps of an unlimited matching sorted shortest first: their
 /// median, leaving out gaps longer than an ordinary bridge may be against it, clamped as
-/// [`typical_gap`].
+/// [`clamped_typical_gap`].
 fn rough_typical_gap(sorted_gaps: &[f64], spacing: f64) -> f64 {
     let median = sorted_gaps
         .get(sorted_gaps.len() / 2)
         .copied()
         .unwrap_or(0.0);
     let kept = sorted_gaps.partition_point(|&gap| gap <= BRIDGE_MAX_IN_TYPICAL_GAPS * median);
-    sorted_gaps[..kept]
-        .get(kept / 2)
-        .copied()
-        .unwrap_or(0.0)
-        .clamp(
-            TYPICAL_GAP_MIN_IN_SPACINGS * spacing,
-            TYPICAL_GAP_MAX_IN_SPACINGS * spacing,
-        )
+    clamped_typical_gap(
+        sorted_gaps[..kept].get(kept / 2).copied().unwrap_or(0.0),
+        spacing,
+    )
 }
 
-/// The hand's typical gap, from the gaps of a settled first matching sorted shortest first, clamped to
-/// [`TYPICAL_GAP_MIN_IN_SPACINGS`]–[`TYPICAL_GAP_MAX_IN_SPACINGS`] sample spacings (the smallest
-/// with no gap at all).
+/// `gap` held within [`TYPICAL_GAP_MIN_IN_SPACINGS`]–[`TYPICAL_GAP_MAX_IN_SPACINGS`] sample
+/// spacings.
+fn clamped_typical_gap(gap: f64, spacing: f64) -> f64 {
+    gap.clamp(
+        TYPICAL_GAP_MIN_IN_SPACINGS * spacing,
+        TYPICAL_GAP_MAX_IN_SPACINGS * spacing,
+    )
+}
+
+/// The hand's typical gap, from the gaps of a settled first matching sorted shortest first,
+/// clamped as [`clamped_typical_gap`] (the smallest with no gap at all).
 ///
 /// DECISION: the first matching bridges openings too (a "( )", a mouth). The typical gap is the
 /// mean of the gaps up to the first one longer than an ordinary bridge may be
@@ -600,12 +612,7 @@ fn rough_typical_gap(sorted_gaps: &[f64], spacing: f64) -> f64 {
 /// 21 px, and both openings were bridged). The median of the kept gaps instead of their mean
 /// measured one drawing fewer on dev and opened the cat's outline in `cat-fork-clean.png`.
 fn typical_gap(sorted_gaps: &[f64], spacing: f64) -> f64 {
-    let clamped = |gap: f64| {
-        gap.clamp(
-            TYPICAL_GAP_MIN_IN_SPACINGS * spacing,
-            TYPICAL_GAP_MAX_IN_SPACINGS * spacing,
-        )
-    };
+    let clamped = |gap: f64| clamped_typical_gap(gap, spacing);
     if sorted_gaps.is_empty() {
         return clamped(0.0);
     }
@@ -711,7 +718,7 @@ fn bridge_candidates(
         let rims = vertices.dot_radius.get(&a.vertex).unwrap_or(&0.0)
             + vertices.dot_radius.get(&b.vertex).unwrap_or(&0.0);
         let shape = bridge_shape(
-            acute_corner_may_miss(vertices, &a, &b, stroke_width),
+            || acute_corner_may_miss(vertices, &a, &b, stroke_width),
             BridgeEnd {
                 at: a.at,
                 outward: a.outward,
@@ -925,8 +932,9 @@ const END_DIRECTION_MISS_PER_PIXEL: f64 = 0.1;
 /// curling towards the other, are no corner (without that, two parallel-lines drawings broke on
 /// dev). Measured on dev: 0.05–0.1 fixed two drawings and broke none; 0.15 fixed one more but
 /// broke a sample and a validation drawing.
-fn end_on_slack(acute_may_miss: bool, turn_to: f64, distance: f64) -> f64 {
-    if acute_may_miss && turn_to >= ACUTE_CORNER_MIN_TURN_DEGREES.to_radians() {
+fn end_on_slack(acute_may_miss: &impl Fn() -> bool, turn_to: f64, distance: f64) -> f64 {
+    // The strokes are walked only at an acute corner.
+    if turn_to >= ACUTE_CORNER_MIN_TURN_DEGREES.to_radians() && acute_may_miss() {
         END_DIRECTION_MISS_PER_PIXEL * distance
     } else {
         0.0
@@ -1003,7 +1011,7 @@ struct BridgeShape {
 /// Ends whose lines do not meet ahead and that would turn sharply (two parallel lines ending side
 /// by side, the two ends of a U) are not a continuation: no bridge.
 fn bridge_shape(
-    acute_may_miss: bool,
+    acute_may_miss: impl Fn() -> bool,
     a: BridgeEnd,
     b: BridgeEnd,
     rims: f64,
@@ -1068,7 +1076,7 @@ fn bridge_shape(
             (turn_to > corner_limit
                 && !band_sides
                 && offset.dot(along) > 0.0
-                && lateral <= stroke_width + end_on_slack(acute_may_miss, turn_to, distance))
+                && lateral <= stroke_width + end_on_slack(&acute_may_miss, turn_to, distance))
             .then_some((to.at, distance))
         };
         [meeting, end_on(&a, &b, turn_b), end_on(&b, &a, turn_a)]
