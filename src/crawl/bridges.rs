@@ -210,18 +210,25 @@ pub(super) fn match_gap_bridges(
     let mut opened: HashSet<u32> = HashSet::new();
     for m in matched {
         if let Some(through) = m.through {
+            // At a hairpin the lines go on into their arms past the corner point, which lies
+            // between them.
+            let corner_point =
+                (!through.hairpin).then(|| vertices.positions[through.corner as usize]);
             if opened.insert(through.corner) {
                 result.cuts.push((through.cut, through.corner));
+                if through.hairpin {
+                    result.cuts.push((through.keep, through.corner));
+                }
                 result.bridges.push(Bridge {
                     a: m.a,
-                    b: m.b,
+                    b: if through.hairpin { through.keep } else { m.b },
                     via: Vec::new(),
                 });
             } else {
                 result.bridges.push(Bridge {
                     a: m.a,
                     b: through.keep,
-                    via: vec![vertices.positions[through.corner as usize]],
+                    via: corner_point.into_iter().collect(),
                 });
             }
             continue;

@@ -856,6 +856,29 @@ mod tests {
         );
     }
 
+    #[test]
+    fn lines_side_by_side_whose_tips_touch_go_on_past_the_hairpin() {
+        // Two lines 6 px apart (two pen widths), each broken 8–9 px above where the lower
+        // pieces' tips touch: the skeleton joins those two pieces in a hairpin. Each upper
+        // piece goes on into the lower piece of its own line, not round the hairpin.
+        let mut hairpin = line((0.0, 100.0), (0.0, 62.0));
+        hairpin.push((3.0, 59.0));
+        hairpin.extend(line((6.0, 62.0), (6.0, 100.0)));
+        let strokes = vec![
+            open(&line((0.0, 0.0), (0.0, 52.0))),
+            open(&line((6.0, 0.0), (6.0, 51.0))),
+            open(&hairpin),
+        ];
+        let curves = connect(&strokes, Method::Strokes, 4.0, 3.0);
+        assert_eq!(curves.len(), 2, "{curves:?}");
+        for x in [0.0, 6.0] {
+            assert!(
+                has_straight_curve(&curves, (x, 0.0), (x, 100.0)),
+                "no curve along x = {x}: {curves:?}"
+            );
+        }
+    }
+
     /// Traces `strokes` (a thin pen) and checks that they come out as two curves, one along
     /// y = 0 and one along y = 3.
     fn assert_one_curve_along_each_line(strokes: &[Stroke]) {

@@ -36,6 +36,16 @@ const MAX_THROUGH_TURN_DEGREES: f64 = 40.0;
 /// cost of straight bridges, before the two ends can be joined round the corner.
 const THROUGH_COST_OFFSET: f64 = 1e8;
 
+/// DECISION: at a hairpin (both arms of the corner run on within [`MAX_THROUGH_TURN_DEGREES`] of
+/// the end's line) the arm an end goes on into is the one whose line it continues, across, not
+/// the one it turns least into: where two lines side by side touch at their tips, the skeleton
+/// joins them in a hairpin whose corner lies between the two lines, and from an end beyond it
+/// the direction to that corner points at the wrong line. The kept arm must lie at least this
+/// much nearer the end's line than the other (pen widths; two lines side by side are a pen
+/// width or more apart, centre to centre), and the lines go on past the corner point, which is
+/// no part of either (measured on the benchmark: dev 288 → 290, val 283 → 284).
+const HAIRPIN_MIN_SIDE_STEP_IN_PEN_WIDTHS: f64 = 0.5;
+
 /// The two ends of a crossing lie across the same gap from it: the farther at most this many
 /// times as far from the corner as the nearer, plus a pen width for the skeleton's wobble.
 const CROSSING_DISTANCE_RATIO: f64 = 2.0;
@@ -49,6 +59,9 @@ pub(super) struct ThroughCorner {
     pub(super) stroke: usize,
     pub(super) keep: u32,
     pub(super) cut: u32,
+    /// Whether the corner is a hairpin, the touching tips of two lines side by side: the lines
+    /// go on past it, the corner point between them is no part of either.
+    pub(super) hairpin: bool,
 }
 
 /// A possible bridge from a free end through a corner, with its cost and length.
@@ -66,6 +79,8 @@ struct Corner {
     stroke: usize,
     neighbours: [u32; 2],
     arms: [Vec2; 2],
+    /// The points where the arms were measured.
+    arm_points: [Point; 2],
 }
 
 /// Every free end that points at a corner of a stroke (within `reach`) from the far side of
@@ -114,14 +129,44 @@ pub(super) fn through_candidates(
                 continue;
             }
             let towards = offset / distance;
-            let turn_at_end = angle(outward, towards);
             let turns = corner.arms.map(|arm| angle(towards, arm));
-            let (keep, cut) = if turns[0] <= turns[1] { (0, 1) } else { (1, 0) };
-            // Clearly one arm: the other turns off at least twice as much.
-            if turn_at_end > max_turn || turns[keep] > max_turn || turns[cut] < 2.0 * turns[keep] {
+            // At a hairpin (two lines side by side whose tips touch) both arms run on the way the
+            // end points, and the corner lies between the two lines: the arm the end goes on
+            // into is the one whose line it continues, the nearer across. Elsewhere it is the
+            // one it turns least into, clearly: the other turns off at least twice as much.
+            let hairpin = corner
+                .arms
+                .iter()
+                .all(|&arm| angle(outward, arm) <= max_turn);
+            let (keep, cut, clearly) = if hairpin {
+                let across = corner.arm_points.map(|p| (p - end.at).cross(outward).abs());
+                let (keep, cut) = if across[0] <= across[1] {
+                    (0, 1)
+                } else {
+                    (1, 0)
+                };
+                let clearly = across[cut]
+                    >= across[keep] + HAIRPIN_MIN_SIDE_STEP_IN_PEN_WIDTHS * stroke_width;
+                (keep, cut, clearly)
+            } else {
+                let (keep, cut) = if turns[0] <= turns[1] { (0, 1) } else { (1, 0) };
+                (keep, cut, turns[cut] >= 2.0 * turns[keep])
+            };
+            // The line the end goes on along: to the corner, or at a hairpin, whose corner lies
+            // off to the side between the two lines, to the kept arm.
+            let (turn_at_end, turn_into_arm) = if hairpin {
+                let onto = corner.arm_points[keep] - end.at;
+                (
+                    angle(outward, onto / onto.hypot().max(1e-9)),
+                    angle(outward, corner.arms[keep]),
+                )
+            } else {
+                (angle(outward, towards), turns[keep])
+            };
+            if turn_at_end > max_turn || turn_into_arm > max_turn || !clearly {
                 continue;
             }
-            let cost = continuation_cost(distance, turn_at_end, turns[keep]);
+            let cost = continuation_cost(distance, turn_at_end, turn_into_arm);
             candidates.push(ThroughCandidate {
                 end: end.vertex,
                 through: ThroughCorner {
@@ -129,6 +174,7 @@ pub(super) fn through_candidates(
                     stroke: corner.stroke,
                     keep: corner.neighbours[keep],
                     cut: corner.neighbours[cut],
+                    hairpin,
                 },
                 cost,
                 length: distance,
@@ -171,6 +217,10 @@ fn angle(a: Vec2, b: Vec2) -> f64 {
     a.dot(b).clamp(-1.0, 1.0).acos()
 }
 
+/// The turn at a vertex of a stroke, the unit directions of its two arms, and the points where
+/// they were measured.
+type TurnAt = (f64, [Vec2; 2], [Point; 2]);
+
 /// The sharp corners of every stroke: vertices where the stroke turns by more than
 /// [`MIN_CORNER_TURN_DEGREES`] between its arms measured `arm` away, the sharpest of each run of
 /// such vertices. Both arms must reach `arm`; a closed stroke's corners may lie anywhere on it.
@@ -185,17 +235,17 @@ fn find_corners(vertices: &StrokeVertices, arm: f64) -> Vec<Corner> {
         }
         let point = |k: usize| vertices.positions[of_stroke[k] as usize];
         // The turn at each vertex, and the arms that give it (none where an arm runs out).
-        let measured: Vec<Option<(f64, [Vec2; 2])>> = (0..n)
+        let measured: Vec<Option<TurnAt>> = (0..n)
             .map(|k| {
-                let back = arm_direction(&point, k, n, closed, arm, false)?;
-                let ahead = arm_direction(&point, k, n, closed, arm, true)?;
+                let (back, back_end) = arm_direction(&point, k, n, closed, arm, false)?;
+                let (ahead, ahead_end) = arm_direction(&point, k, n, closed, arm, true)?;
                 let turn = std::f64::consts::PI - angle(back, ahead);
-                Some((turn, [back, ahead]))
+                Some((turn, [back, ahead], [back_end, ahead_end]))
             })
             .collect();
-        let turn_at = |k: usize| measured[k].map_or(0.0, |(turn, _)| turn);
+        let turn_at = |k: usize| measured[k].map_or(0.0, |(turn, _, _)| turn);
         for k in 0..n {
-            let Some((turn, arms)) = measured[k] else {
+            let Some((turn, arms, arm_ends)) = measured[k] else {
                 continue;
             };
             let (before, after) = if closed {
@@ -214,14 +264,15 @@ fn find_corners(vertices: &StrokeVertices, arm: f64) -> Vec<Corner> {
                 stroke,
                 neighbours: [of_stroke[before], of_stroke[after]],
                 arms,
+                arm_points: arm_ends,
             });
         }
     }
     corners
 }
 
-/// The unit direction from vertex `k` to the point `arm` along the stroke (ahead or back), if
-/// the stroke reaches that far (round a closed stroke, at most halfway).
+/// The unit direction from vertex `k` to the point `arm` along the stroke (ahead or back), and
+/// that point, if the stroke reaches that far (round a closed stroke, at most halfway).
 fn arm_direction(
     point: &impl Fn(usize) -> Point,
     k: usize,
@@ -229,7 +280,7 @@ fn arm_direction(
     closed: bool,
     arm: f64,
     ahead: bool,
-) -> Option<Vec2> {
+) -> Option<(Vec2, Point)> {
     let from = point(k);
     let steps = if closed {
         n / 2
@@ -252,7 +303,7 @@ fn arm_direction(
         if walked >= arm {
             let direction = p - from;
             let length = direction.hypot();
-            return (length > 0.0).then(|| direction / length);
+            return (length > 0.0).then(|| (direction / length, p));
         }
     }
     None
