@@ -99,6 +99,10 @@ const TYPICAL_GAP_MIN_IN_SPACINGS: f64 = 1.0;
 /// See [`TYPICAL_GAP_MIN_IN_SPACINGS`].
 const TYPICAL_GAP_MAX_IN_SPACINGS: f64 = 3.0;
 
+/// The typical gap is measured on straight bridges alone where there are at least this many;
+/// see [`match_gap_bridges`].
+const MIN_STRAIGHT_GAPS: usize = 2;
+
 /// DECISION: a bridge may be at most this many typical gaps long; see [`match_gap_bridges`].
 const BRIDGE_MAX_IN_TYPICAL_GAPS: f64 = 2.0;
 
@@ -171,14 +175,28 @@ pub(super) fn match_gap_bridges(
     // between two lines side by side, which the settled matching gives up), then the matching
     // itself, with overlong bridges out of the running, so that they cannot take an end from a
     // real gap.
+    // DECISION: the typical gap is measured on the straight bridges where there are at least
+    // [`MIN_STRAIGHT_GAPS`] of them. A corner bridge's length is measured round the corner, which
+    // is no pen lift's length: through the point where two lines meet far beyond both ends (an
+    // acute tip), or a pen width across between two ends side by side whose hooked tips point
+    // at each other; one such short "gap" among a few real ones was taken for the hand's gap
+    // and left the real ones unbridged.
     let free_gaps = |matched: &[&Candidate]| -> Vec<f64> {
-        let mut gaps: Vec<f64> = matched
-            .iter()
-            .filter(|m| m.between_free_ends)
-            .map(|m| matching.ink_gap(m))
-            .collect();
-        gaps.sort_by(f64::total_cmp);
-        gaps
+        let gap_of = |straight_only: bool| -> Vec<f64> {
+            let mut gaps: Vec<f64> = matched
+                .iter()
+                .filter(|m| m.between_free_ends && !(straight_only && m.corner.is_some()))
+                .map(|m| matching.ink_gap(m))
+                .collect();
+            gaps.sort_by(f64::total_cmp);
+            gaps
+        };
+        let straight = gap_of(true);
+        if straight.len() >= MIN_STRAIGHT_GAPS {
+            straight
+        } else {
+            gap_of(false)
+        }
     };
     let settled_under = |typical_gap: f64| {
         let rearrangeable = matching.rearrangeable(typical_gap);

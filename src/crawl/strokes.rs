@@ -879,6 +879,27 @@ mod tests {
         }
     }
 
+    #[test]
+    fn a_short_corner_gap_does_not_set_the_hands_gap() {
+        // An "L" whose pen lifted a hair before its corner (3 px of paper round the corner),
+        // and a line with two pen lifts of 10 px. The hand's gap is the line's: both its gaps
+        // close. Measured with the corner among them, the typical gap was the corner's 3 px
+        // and the limit too short for the line's gaps.
+        let strokes = vec![
+            open(&line((0.0, 0.0), (0.0, 60.0))),
+            open(&line((3.0, 63.0), (60.0, 63.0))),
+            open(&line((0.0, 200.0), (50.0, 200.0))),
+            open(&line((63.0, 200.0), (110.0, 200.0))),
+            open(&line((123.0, 200.0), (170.0, 200.0))),
+        ];
+        let curves = connect(&strokes, Method::Strokes, 4.0, 3.0);
+        assert_eq!(curves.len(), 2, "{curves:?}");
+        assert!(
+            has_straight_curve(&curves, (0.0, 200.0), (170.0, 200.0)),
+            "{curves:?}"
+        );
+    }
+
     /// Traces `strokes` (a thin pen) and checks that they come out as two curves, one along
     /// y = 0 and one along y = 3.
     fn assert_one_curve_along_each_line(strokes: &[Stroke]) {
