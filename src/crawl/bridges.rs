@@ -131,6 +131,10 @@ const CORNER_AT_END_SLACK: f64 = 0.2;
 /// Two parallel ends closer than this (pen widths) are a band's two sides, not a corner.
 const BAND_SIDES_MAX_GAP_IN_PEN_WIDTHS: f64 = 0.5;
 
+/// Two ends point the same way, and one lies more beside the other than ahead of it, where the
+/// cosine of the angle between them is at least this (45°).
+const SAME_WAY_COSINE: f64 = std::f64::consts::FRAC_1_SQRT_2;
+
 /// Rays closer to parallel than this (the sine of the angle between them) do not meet.
 const MIN_RAY_CROSSING_SINE: f64 = 0.05;
 
@@ -742,6 +746,11 @@ fn bridge_candidates(
         // Gaps are measured between rims: a dot has the size of the dash it stands for.
         let rims = vertices.dot_radius.get(&a.vertex).unwrap_or(&0.0)
             + vertices.dot_radius.get(&b.vertex).unwrap_or(&0.0);
+        // DECISION: two ends of lines side by side are never bridged, wherever the lines of
+        // their curling tips meet ([`lines_side_by_side`]).
+        if lines_side_by_side(vertices, &a, &b, stroke_width) {
+            continue;
+        }
         let shape = bridge_shape(
             || acute_corner_may_miss(vertices, &a, &b, stroke_width),
             BridgeEnd {
@@ -970,6 +979,53 @@ fn end_on_slack(acute_may_miss: &impl Fn() -> bool, turn_to: f64, distance: f64)
 /// ([`end_on_slack`]): they do not point the same way, or their strokes draw at least a pen width
 /// further apart three pen widths behind the ends (the two arms of a "V", not two lines side by
 /// side).
+/// Whether the free ends `a` and `b` end two lines side by side: they point the same way, one
+/// lies more beside the other than ahead of it, farther from it than a band's two sides are
+/// (a tip whose sides merged is a band's), and their strokes keep their distance behind them
+/// over a long enough stretch to tell: at the cusp's look-back farther apart than a band's two
+/// sides, and not drawing apart as a tip's sides do (by a pen width more than the ends).
+fn lines_side_by_side(
+    vertices: &StrokeVertices,
+    a: &BridgeableEnd,
+    b: &BridgeableEnd,
+    stroke_width: f64,
+) -> bool {
+    let (Some(ua), Some(ub)) = (a.outward, b.outward) else {
+        return false;
+    };
+    let chord = b.at - a.at;
+    let beside = chord.dot(ua).abs().max(chord.dot(ub).abs()) < chord.hypot() * SAME_WAY_COSINE;
+    if a.attached || b.attached || ua.dot(ub) < SAME_WAY_COSINE || !beside {
+        return false;
+    }
+    let band_width = BAND_TIP_MAX_SEPARATION_IN_PEN_WIDTHS * stroke_width;
+    if chord.hypot() <= band_width {
+        return false;
+    }
+    let (common, behind) = apart_behind(vertices, a, b, stroke_width);
+    common >= CUSP_MIN_STROKE_IN_PEN_WIDTHS * stroke_width
+        && behind > band_width
+        && behind < a.at.distance(b.at) + CUSP_MIN_DIVERGENCE_IN_PEN_WIDTHS * stroke_width
+}
+
+/// How far back the strokes of ends `a` and `b` are compared (the cusp's look-back, as far as the
+/// shorter reaches), and how far apart they are there.
+fn apart_behind(
+    vertices: &StrokeVertices,
+    a: &BridgeableEnd,
+    b: &BridgeableEnd,
+    stroke_width: f64,
+) -> (f64, f64) {
+    let look_back = CUSP_LOOK_BACK_IN_PEN_WIDTHS * stroke_width;
+    let common = point_behind(vertices, a, look_back)
+        .1
+        .min(point_behind(vertices, b, look_back).1);
+    let behind = point_behind(vertices, a, common)
+        .0
+        .distance(point_behind(vertices, b, common).0);
+    (common, behind)
+}
+
 fn acute_corner_may_miss(
     vertices: &StrokeVertices,
     a: &BridgeableEnd,
@@ -1187,13 +1243,7 @@ fn cusp_shape(
     }
     let separation = a.at.distance(b.at);
     // Compared at the same distance back along both strokes, as far as the shorter one reaches.
-    let look_back = CUSP_LOOK_BACK_IN_PEN_WIDTHS * stroke_width;
-    let common = point_behind(vertices, a, look_back)
-        .1
-        .min(point_behind(vertices, b, look_back).1);
-    let behind = point_behind(vertices, a, common)
-        .0
-        .distance(point_behind(vertices, b, common).0);
+    let (common, behind) = apart_behind(vertices, a, b, stroke_width);
     let band_width = BAND_TIP_MAX_SEPARATION_IN_PEN_WIDTHS * stroke_width;
     let band_tip = separation <= band_width && behind <= band_width && common >= stroke_width;
     let cusp = a.stroke != b.stroke

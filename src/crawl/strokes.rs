@@ -900,6 +900,27 @@ mod tests {
         );
     }
 
+    #[test]
+    fn lines_side_by_side_whose_tips_curl_together_stay_apart() {
+        // Two lines 5 px apart, each broken once by a 12 px gap, ending side by side at the
+        // bottom, the right one's tip curling towards the left one. The lines of the two tips
+        // meet 8 px below: a corner, were the lines not side by side all the way back.
+        let mut curling = line((5.0, 52.0), (5.0, 96.0));
+        curling.extend([(4.0, 99.0), (3.8, 100.0)]);
+        let strokes = vec![
+            open(&line((0.0, 0.0), (0.0, 40.0))),
+            open(&line((0.0, 52.0), (0.0, 100.0))),
+            open(&line((5.0, 0.0), (5.0, 40.0))),
+            open(&curling),
+        ];
+        let curves = connect(&strokes, Method::Strokes, 4.0, 3.0);
+        assert_eq!(curves.len(), 2, "{curves:?}");
+        assert!(
+            has_straight_curve(&curves, (0.0, 0.0), (0.0, 100.0)),
+            "{curves:?}"
+        );
+    }
+
     /// Traces `strokes` (a thin pen) and checks that they come out as two curves, one along
     /// y = 0 and one along y = 3.
     fn assert_one_curve_along_each_line(strokes: &[Stroke]) {
