@@ -35,6 +35,9 @@ struct Candidate {
     cost: f64,
     /// The drawn length, rim to rim.
     length: f64,
+    /// How much of a corner bridge runs alongside the stroke of one of its ends, within a pen
+    /// width of it ([`alongside_length`]): ink, not a gap.
+    alongside: f64,
     a: u32,
     b: u32,
     /// The corner the bridge is drawn through, if it is one.
@@ -318,7 +321,7 @@ impl<'a> Matching<'a> {
     /// ink, so a bridge between two skeleton ends is a pen width longer than the gap on paper.
     /// Ratios of gaps are ratios of these.
     fn ink_gap(&self, candidate: &Candidate) -> f64 {
-        (candidate.length - self.stroke_width).max(0.0)
+        (candidate.length - candidate.alongside - self.stroke_width).max(0.0)
     }
 
     /// Matches ends greedily from the cheapest candidate, each end used once. With a typical gap,
@@ -769,9 +772,20 @@ fn bridge_candidates(
         .filter(|shape| !same_way || shape.corner.is_some())
         .or_else(|| cusp_shape(vertices, &a, &b, stroke_width));
         if let Some(shape) = shape {
+            let alongside = shape.corner.map_or(0.0, |corner| {
+                let path = [a.at, corner, b.at];
+                alongside_length(vertices, &a, &b, path, stroke_width).max(alongside_length(
+                    vertices,
+                    &b,
+                    &a,
+                    path,
+                    stroke_width,
+                ))
+            });
             candidates.push(Candidate {
                 cost: shape.cost,
                 length: shape.length,
+                alongside,
                 a: a.vertex,
                 b: b.vertex,
                 corner: shape.corner,
@@ -789,6 +803,7 @@ fn bridge_candidates(
                 length: c.length,
                 a: c.end,
                 b: c.through.corner,
+                alongside: 0.0,
                 corner: None,
                 between_free_ends: false,
                 through: Some(c.through),
@@ -1322,6 +1337,64 @@ fn staggered_tip(
 }
 
 /// The points of `end`'s stroke, from that end to the other.
+/// The step (pixels) at which a bridge's path is checked against the strokes beside it.
+const ALONGSIDE_STEP_PX: f64 = 1.0;
+
+/// DECISION: the length of a corner bridge's path `path` that runs alongside the stroke of the
+/// end `tip`, within a pen width of its centre line and more than a pen width back from its
+/// end, where `short` is the short side of a staggered tip ([`staggered_tip`]): one side of an
+/// acute tip stopped short of the tip, its end lies beside the other side, and the other
+/// side's ink hides the pen lift there. Only the bridge's stretch off the ink counts against
+/// the gap limit ([`Matching::ink_gap`]); a bridge between ends that are no such tip has
+/// nothing alongside.
+fn alongside_length(
+    vertices: &StrokeVertices,
+    short: &BridgeableEnd,
+    tip: &BridgeableEnd,
+    path: [Point; 3],
+    stroke_width: f64,
+) -> f64 {
+    let total = path[0].distance(path[1]) + path[1].distance(path[2]);
+    // A bridge shorter than this hides no stretch worth measuring.
+    if total <= 2.0 * stroke_width || short.attached || tip.attached {
+        return 0.0;
+    }
+    if !staggered_tip(vertices, short, tip, stroke_width) {
+        return 0.0;
+    }
+    // The tip's stroke from a pen width back from its end, as far back as the bridge is long.
+    let (from, _) = point_behind(vertices, tip, stroke_width);
+    let (to, _) = point_behind(vertices, tip, stroke_width + total);
+    let mut back = vec![from];
+    let mut walked = 0.0;
+    for pair in stroke_points_from(vertices, tip).windows(2) {
+        walked += pair[0].distance(pair[1]);
+        if walked >= stroke_width + total {
+            break;
+        }
+        if walked > stroke_width {
+            back.push(pair[1]);
+        }
+    }
+    back.push(to);
+    let step = ALONGSIDE_STEP_PX;
+    let mut covered = 0.0;
+    for pair in path.windows(2) {
+        let length = pair[0].distance(pair[1]);
+        let steps = (length / step).ceil() as usize;
+        for k in 0..steps {
+            let p = pair[0].lerp(pair[1], (k as f64 + 0.5) / steps as f64);
+            let near = back
+                .windows(2)
+                .any(|w| distance_to_segment(p, kurbo::Line::new(w[0], w[1])) < stroke_width);
+            if near {
+                covered += length / steps as f64;
+            }
+        }
+    }
+    covered
+}
+
 fn stroke_points_from(vertices: &StrokeVertices, end: &BridgeableEnd) -> Vec<Point> {
     let of_stroke = &vertices.of_stroke[end.stroke];
     let points = of_stroke.iter().map(|&v| vertices.positions[v as usize]);

@@ -803,6 +803,27 @@ mod tests {
         assert_eq!(curves.len(), 2, "{curves:?}");
     }
 
+    #[test]
+    fn a_side_stopping_far_short_of_a_tip_is_hidden_by_the_other_sides_ink() {
+        // The spike above, its right side stopping 30 px short of the tip: three times the
+        // hand's 10 px gap, but all of it beside the left side, whose ink hides the pen lift
+        // but for the 5 px across. The outline still turns back at the tip.
+        let mut strokes = dashes(&[(0.0, 60.0), (45.0, 60.0), (45.0, 1.0)], 1000.0, 0.0);
+        strokes.extend(dashes(
+            &[(50.0, 31.0), (50.0, 50.0), (56.0, 60.0), (100.0, 60.0)],
+            1000.0,
+            0.0,
+        ));
+        strokes.extend(dashes(&[(0.0, 200.0), (200.0, 200.0)], 30.0, 10.0));
+        let curves = connect(&strokes, Method::Strokes, 4.0, 3.0);
+        assert_eq!(curves.len(), 2, "{curves:?}");
+        let spike = curves
+            .iter()
+            .find(|c| c.points[0].y < 100.0)
+            .expect("the spike");
+        assert!(spike.points.iter().any(|p| p.y < 2.0) && spike.points.iter().any(|p| p.x > 99.0));
+    }
+
     /// Points every 4 px along a straight line from `from` to `to`.
     fn line(from: (f64, f64), to: (f64, f64)) -> Vec<(f64, f64)> {
         let length = Point::from(from).distance(Point::from(to));
