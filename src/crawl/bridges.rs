@@ -23,6 +23,9 @@ pub(super) struct BridgeableEnd {
     pub(super) stroke: usize,
     /// The unit direction in which the pen was moving at this end; `None` for a dot.
     pub(super) outward: Option<Vec2>,
+    /// How much the stroke turns on its way into this end (radians, counter-clockwise positive
+    /// in the pen's direction), carried into `outward`: 0 where it runs straight.
+    pub(super) bend: f64,
     /// Where the curve goes on from: the end itself, or for a T-end the junction point on the
     /// stroke it ran into.
     pub(super) at: Point,
@@ -759,11 +762,13 @@ fn bridge_candidates(
             BridgeEnd {
                 at: a.at,
                 outward: a.outward,
+                bend: a.bend,
                 behind: ink_behind(vertices, &a, stroke_width),
             },
             BridgeEnd {
                 at: b.at,
                 outward: b.outward,
+                bend: b.bend,
                 behind: ink_behind(vertices, &b, stroke_width),
             },
             rims,
@@ -1069,6 +1074,7 @@ const ACUTE_ARMS_LOOK_BACK_IN_PEN_WIDTHS: f64 = 3.0;
 struct BridgeEnd {
     at: Point,
     outward: Option<Vec2>,
+    bend: f64,
     /// For a free end, the point a pen width back along its stroke: the end's ink runs from
     /// there to the end.
     behind: Option<Point>,
@@ -1175,6 +1181,31 @@ fn bridge_shape(
                 && lateral <= stroke_width + end_on_slack(&acute_may_miss, turn_to, distance))
             .then_some((to.at, distance))
         };
+        // DECISION: where both strokes bend on into the gap the way the bridge turns (the two
+        // ends of a gap in a curve), their lines' meeting point is no corner: the curve goes on
+        // round a bend, through the point of an arc tangent to both lines, which lies short of
+        // the meeting point by the ratio tan(θ/2) / tan θ, θ the mean turn at the two ends.
+        let meeting = meeting.map(|(corner, length)| {
+            let turn_sense = a
+                .outward
+                .zip(b.outward)
+                .map_or(0.0, |(ua, ub)| ua.cross(-ub));
+            let bends_on = a.bend * turn_sense > 0.0 && b.bend * turn_sense < 0.0;
+            if !bends_on {
+                return (corner, length);
+            }
+            let half_turn = 0.5 * (turn_a + turn_b);
+            let share = if half_turn > 1e-6 && half_turn < std::f64::consts::FRAC_PI_2 {
+                (0.5 * half_turn).tan() / half_turn.tan()
+            } else {
+                1.0
+            };
+            let middle = a.at.midpoint(b.at);
+            let on_arc = middle + (corner - middle) * share;
+            // The bridge is judged as before, by the path through the meeting point: only the
+            // drawn curve changes.
+            (on_arc, length)
+        });
         [meeting, end_on(&a, &b, turn_b), end_on(&b, &a, turn_a)]
             .into_iter()
             .flatten()
@@ -1513,5 +1544,52 @@ impl StrokeGroups {
             self.sets.attach(root_b as u32, root_a as u32);
             self.length[root_a] += self.length[root_b] + bridge_length;
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The ends of an 80° gap in a circle of radius 30 about the origin, the circle drawn
+    /// counter-clockwise; `bend` is how much each stroke turns on its way into its end.
+    fn gap_in_a_circle(bend: f64) -> (BridgeEnd, BridgeEnd) {
+        let at = |degrees: f64| {
+            let (sin, cos) = degrees.to_radians().sin_cos();
+            (Point::new(30.0 * cos, 30.0 * sin), Vec2::new(-sin, cos))
+        };
+        let (before, along_before) = at(-40.0);
+        let (after, along_after) = at(40.0);
+        let end = |at: Point, outward: Vec2, bend: f64| BridgeEnd {
+            at,
+            outward: Some(outward),
+            bend,
+            behind: None,
+        };
+        // Leaving the stroke after the gap, the pen goes clockwise: its bend has the other sign.
+        (
+            end(before, along_before, bend),
+            end(after, -along_after, -bend),
+        )
+    }
+
+    #[test]
+    fn a_gap_in_a_curve_is_bridged_round_the_bend_not_through_a_corner() {
+        let corner_of = |bend: f64| {
+            let (a, b) = gap_in_a_circle(bend);
+            bridge_shape(|| false, a, b, 0.0, 7.0)
+                .and_then(|shape| shape.corner)
+                .expect("a corner bridge")
+        };
+        // Straight strokes: a corner where their lines meet, 30 / cos 40° from the centre.
+        let corner = corner_of(0.0);
+        assert!((corner.x - 30.0 / 40f64.to_radians().cos()).abs() < 0.01 && corner.y.abs() < 0.01);
+        // Strokes bending on into the gap: the curve goes on round the circle, through its point
+        // midway along the gap.
+        let on_arc = corner_of(0.2);
+        assert!(
+            (on_arc.x - 30.0).abs() < 0.01 && on_arc.y.abs() < 0.01,
+            "{on_arc:?}"
+        );
     }
 }

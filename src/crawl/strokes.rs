@@ -65,9 +65,10 @@ const MAX_EXTRAPOLATED_TURN: f64 = std::f64::consts::FRAC_PI_3;
 /// points ordered from that end inwards): the chord over `reach` of the stroke that starts `skip`
 /// in from the end (at most a third of the stroke in), turned on by the turn the stroke makes
 /// per length over the next `reach` times the distance back to the end, so that the end of an arc
-/// points along its tangent, not along a chord that lags behind it. `None` for a stroke of one
-/// point.
-fn end_direction(points: &[Point], reach: f64, skip: f64) -> Option<Vec2> {
+/// points along its tangent, not along a chord that lags behind it; and that turn carried to the
+/// end (radians, counter-clockwise positive, in the pen's direction towards the end: the stroke's
+/// bend). `None` for a stroke of one point.
+fn end_direction(points: &[Point], reach: f64, skip: f64) -> Option<(Vec2, f64)> {
     let length = polyline_length(points, false);
     let skip = skip.min(length / 3.0);
     let start = point_at_length(points, skip);
@@ -75,27 +76,27 @@ fn end_direction(points: &[Point], reach: f64, skip: f64) -> Option<Vec2> {
     let chord = start - near;
     if chord.hypot() == 0.0 {
         let whole = *points.first()? - *points.last()?;
-        return (whole.hypot() > 0.0).then(|| whole / whole.hypot());
+        return (whole.hypot() > 0.0).then(|| (whole / whole.hypot(), 0.0));
     }
     let far = point_at_length(points, skip + 2.0 * reach);
     let previous = near - far;
     let mut direction = chord / chord.hypot();
+    let mut bend = 0.0;
     if previous.hypot() > 0.25 * chord.hypot() {
         let turn = previous.cross(chord).atan2(previous.dot(chord));
         if turn.abs() < MAX_EXTRAPOLATED_TURN {
             // The turn between the two chords happens over about one reach; the tangent at the
             // end lies skip + half a reach beyond the middle of the near chord.
             let extrapolated = turn * (skip + 0.5 * chord.hypot()) / chord.hypot().max(1e-9);
-            let (sin, cos) = extrapolated
-                .clamp(-MAX_EXTRAPOLATED_TURN, MAX_EXTRAPOLATED_TURN)
-                .sin_cos();
+            bend = extrapolated.clamp(-MAX_EXTRAPOLATED_TURN, MAX_EXTRAPOLATED_TURN);
+            let (sin, cos) = bend.sin_cos();
             direction = Vec2::new(
                 direction.x * cos - direction.y * sin,
                 direction.x * sin + direction.y * cos,
             );
         }
     }
-    Some(direction)
+    Some((direction, bend))
 }
 
 /// The point `length` along the polyline from its first point (its last point if it is shorter).
@@ -317,7 +318,7 @@ impl StrokeGraph {
                 end_direction(&along, reach, skip),
                 end_direction(&reversed, reach, skip),
             ];
-            for ((end, vertex), outward) in stroke.ends.iter().zip([first, last]).zip(outward) {
+            for ((end, vertex), direction) in stroke.ends.iter().zip([first, last]).zip(outward) {
                 let (at, attached) = match *end {
                     StrokeEnd::Free => (positions[vertex as usize], false),
                     StrokeEnd::Attached(junction) => (junction, true),
@@ -325,7 +326,8 @@ impl StrokeGraph {
                 graph.ends.push(BridgeableEnd {
                     vertex,
                     stroke: s,
-                    outward,
+                    outward: direction.map(|(outward, _)| outward),
+                    bend: direction.map_or(0.0, |(_, bend)| bend),
                     at,
                     attached,
                 });
