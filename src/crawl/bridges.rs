@@ -1183,8 +1183,7 @@ fn bridge_shape(
         let band_sides = meeting.is_none()
             && distance < BAND_SIDES_MAX_GAP_IN_PEN_WIDTHS * stroke_width
             && matches!((a.outward, b.outward), (Some(ua), Some(ub)) if ua.dot(ub) > 0.0);
-        let end_on = |from: &BridgeEnd, to: &BridgeEnd, turn_to: f64| {
-            let along = from.outward?;
+        let end_on_along = |from: &BridgeEnd, to: &BridgeEnd, turn_to: f64, along: Vec2| {
             let offset = to.at - from.at;
             // The other end's ink: its end and the pen width of stroke behind it. A T-end's line
             // runs into the stroke it is attached to anyway: only the end itself counts for it.
@@ -1203,6 +1202,18 @@ fn bridge_shape(
                 && offset.dot(along) > 0.0
                 && lateral <= stroke_width + end_on_slack(&acute_may_miss, turn_to, distance))
             .then_some((uneroded(to, stroke_width), distance))
+        };
+        // DECISION: an end's line is tried along its direction as measured (the stroke's bend
+        // carried to the end) and along the stroke's own chord (without that bend): on a thin
+        // pen the last pixels of a stroke curl by 15° and more with the pen's jitter, and the
+        // carried bend then turns the line away from a corner the stroke was heading for
+        // (measured on the benchmark: dev 303 → 306, val 292 → 300).
+        let end_on = |from: &BridgeEnd, to: &BridgeEnd, turn_to: f64| {
+            let along = from.outward?;
+            let (sin, cos) = (-from.bend).sin_cos();
+            let unbent = Vec2::new(along.x * cos - along.y * sin, along.x * sin + along.y * cos);
+            end_on_along(from, to, turn_to, along)
+                .or_else(|| end_on_along(from, to, turn_to, unbent))
         };
         // DECISION: where the strokes bend on into the gap the way the bridge turns (one of them
         // may run straight, neither bends the other way: the two ends of a gap in a curve),
@@ -1646,5 +1657,29 @@ mod tests {
             .and_then(|shape| shape.corner)
             .expect("a corner bridge");
         assert!(corner.distance(Point::new(1.5, 0.0)) < 1e-9, "{corner:?}");
+    }
+
+    #[test]
+    fn an_end_curled_by_the_pen_may_reach_a_corner_along_its_stroke() {
+        // A foot whose last pixels curl down by 15° (the bend its end direction was carried
+        // on by), stopping 9 px short of a stem that runs up to the corner. Along the curled
+        // direction its line misses the stem's ink; along the stroke it runs into it.
+        let bend: f64 = 0.27;
+        let foot = BridgeEnd {
+            at: Point::new(0.0, 0.0),
+            outward: Some(Vec2::new(bend.cos(), bend.sin())),
+            bend,
+            behind: Some(Point::new(-1.5, 0.0)),
+        };
+        let stem = BridgeEnd {
+            at: Point::new(9.0, -2.5),
+            outward: Some(Vec2::new(0.0, -1.0)),
+            bend: 0.0,
+            behind: Some(Point::new(9.0, 0.5)),
+        };
+        let corner = bridge_shape(|| false, foot, stem, 0.0, 1.5)
+            .and_then(|shape| shape.corner)
+            .expect("a corner bridge");
+        assert!(corner.distance(Point::new(9.0, -3.25)) < 1e-9, "{corner:?}");
     }
 }
