@@ -774,9 +774,14 @@ fn bridge_candidates(
             rims,
             stroke_width,
         )
-        .filter(|shape| !same_way || shape.corner.is_some())
-        .or_else(|| cusp_shape(vertices, &a, &b, stroke_width));
-        if let Some(shape) = shape {
+        .filter(|shape| !same_way || shape.corner.is_some());
+        // A corner may be too long for the gap limit where the ends' lines meet far ahead; the
+        // outline may still turn back between them (a cusp), last of all.
+        let turn_back = match &shape {
+            Some(shape) if shape.corner.is_none() => None,
+            _ => cusp_shape(vertices, &a, &b, stroke_width),
+        };
+        for shape in [shape, turn_back].into_iter().flatten() {
             let alongside = shape.corner.map_or(0.0, |corner| {
                 let path = [a.at, corner, b.at];
                 alongside_length(vertices, &a, &b, path, stroke_width).max(alongside_length(
@@ -821,7 +826,9 @@ fn bridge_candidates(
             .then(x.length.total_cmp(&y.length))
             .then((x.a, x.b).cmp(&(y.a, y.b)))
     });
-    candidates.dedup_by(|x, y| (x.a, x.b) == (y.a, y.b));
+    // Each pair once per shape: a pair may have a corner too long for the gap limit and, last of
+    // all, a cusp.
+    candidates.dedup_by(|x, y| (x.a, x.b, x.cost.to_bits()) == (y.a, y.b, y.cost.to_bits()));
     (candidates, on_gaps)
 }
 
@@ -1085,9 +1092,11 @@ struct BridgeEnd {
 /// 15° and more with the pen's jitter, and the carried bend then turns the end's line away from
 /// where the stroke was heading. So an end's line is tried both ways, as measured and along its
 /// stroke's own chord (this, the measured direction without the bend): for running into a corner
-/// (dev 303 → 306, val 292 → 300 on the benchmark) and for the turn limit of a straight bridge
+/// (dev 303 → 306, val 292 → 300 on the benchmark), for the turn limit of a straight bridge
 /// (dev 306 → 307, val 300; its cost stays that of the measured turn: costed by the smaller
-/// turn, a thick figure of the faces family broke).
+/// turn, a thick figure of the faces family broke) and for where two ends' lines meet, the
+/// nearer meeting taken (dev 307 → 310, val 300: the crests of a tight zigzag, where the bend
+/// carried on up a crest's side overshoots; `spikes-thin-004` broke).
 fn unbent(end: &BridgeEnd) -> Option<Vec2> {
     let along = end.outward?;
     let (sin, cos) = (-end.bend).sin_cos();
@@ -1178,10 +1187,14 @@ fn bridge_shape(
     });
     let corner_limit = MIN_CORNER_TURN_DEGREES.to_radians();
     let corner = if turn_a.max(turn_b) > corner_limit {
-        let meeting = a
-            .outward
-            .zip(b.outward)
-            .and_then(|(ua, ub)| rays_meet(a.at, ua, b.at, ub))
+        let meet = |ua: Option<Vec2>, ub: Option<Vec2>| {
+            ua.zip(ub)
+                .and_then(|(ua, ub)| rays_meet(a.at, ua, b.at, ub))
+        };
+        let meeting = [meet(a.outward, b.outward), meet(unbent(&a), unbent(&b))]
+            .into_iter()
+            .flatten()
+            .min_by(|x, y| x.1.total_cmp(&y.1))
             .map(|(corner, length)| {
                 let corner = if corner == a.at {
                     uneroded(&a, stroke_width)
@@ -1720,5 +1733,28 @@ mod tests {
         };
         let shape = bridge_shape(|| false, a, b, 0.0, 1.5).expect("a bridge");
         assert!(shape.corner.is_none());
+    }
+
+    #[test]
+    fn ends_whose_carried_bends_overshoot_meet_where_their_strokes_point() {
+        // The two ends of a gap over the crest of a tight zigzag, 6 px apart, their strokes
+        // climbing at 30° either side of the vertical. Carried on, the bends of their last
+        // pixels turn both ends nearly upright, and those lines meet far above the crest.
+        let rotate = |v: Vec2, angle: f64| {
+            let (sin, cos) = angle.sin_cos();
+            Vec2::new(v.x * cos - v.y * sin, v.x * sin + v.y * cos)
+        };
+        let (up_right, up_left) = (Vec2::new(0.5, -0.866), Vec2::new(-0.5, -0.866));
+        let end = |at: Point, stroke_way: Vec2, bend: f64| BridgeEnd {
+            at,
+            outward: Some(rotate(stroke_way, bend)),
+            bend,
+            behind: None,
+        };
+        let a = end(Point::new(0.0, 0.0), up_right, -0.45);
+        let b = end(Point::new(6.0, 0.0), up_left, 0.45);
+        let shape = bridge_shape(|| false, a, b, 0.0, 2.0).expect("a corner bridge");
+        assert!(shape.corner.is_some());
+        assert!(shape.length < 13.0, "{}", shape.length);
     }
 }

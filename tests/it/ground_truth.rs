@@ -20,11 +20,6 @@ const KNOWN_FAILURES: &[(&str, &str)] = &[
          line of its own and the fork's outline ends at the other",
     ),
     (
-        "objects-clean.png",
-        "the cloud's outline strays 4.0 px from the truth at its notches with a 3 px pen; the \
-         tolerance is 3.5 px",
-    ),
-    (
         "spiral-waves-thin.png",
         "a wave's peak strays 3.2 px from the truth with a 1.9 px pen; the tolerance is 2.9 px",
     ),
