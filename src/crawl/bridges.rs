@@ -1002,10 +1002,6 @@ fn end_on_slack(acute_may_miss: &impl Fn() -> bool, turn_to: f64, distance: f64)
     }
 }
 
-/// Whether two free ends may meet at an acute corner that their lines miss by a little
-/// ([`end_on_slack`]): they do not point the same way, or their strokes draw at least a pen width
-/// further apart three pen widths behind the ends (the two arms of a "V", not two lines side by
-/// side).
 /// Whether the free ends `a` and `b` end two lines side by side: they point the same way, one
 /// lies more beside the other than ahead of it, farther from it than a band's two sides are
 /// (a tip whose sides merged is a band's), and their strokes keep their distance behind them
@@ -1053,6 +1049,10 @@ fn apart_behind(
     (common, behind)
 }
 
+/// Whether two free ends may meet at an acute corner that their lines miss by a little
+/// ([`end_on_slack`]): they do not point the same way, or their strokes draw at least a pen width
+/// further apart three pen widths behind the ends (the two arms of a "V", not two lines side by
+/// side).
 fn acute_corner_may_miss(
     vertices: &StrokeVertices,
     a: &BridgeableEnd,
@@ -1095,8 +1095,10 @@ struct BridgeEnd {
 /// (dev 303 → 306, val 292 → 300 on the benchmark), for the turn limit of a straight bridge
 /// (dev 306 → 307, val 300; its cost stays that of the measured turn: costed by the smaller
 /// turn, a thick figure of the faces family broke) and for where two ends' lines meet, the
-/// nearer meeting taken (dev 307 → 310, val 300: the crests of a tight zigzag, where the bend
-/// carried on up a crest's side overshoots; `spikes-thin-004` broke).
+/// nearer meeting taken (with a pair's cusp no longer kept out by an overlong corner: dev
+/// 307 → 312, val 300 → 301; the crests of a tight zigzag, where the bend carried on up a
+/// crest's side overshoots; `dumbbell-clean-005` and `spikes-thin-004` broke on dev, two thick
+/// letters on val).
 fn unbent(end: &BridgeEnd) -> Option<Vec2> {
     let along = end.outward?;
     let (sin, cos) = (-end.bend).sin_cos();
