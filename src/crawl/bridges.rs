@@ -1022,13 +1022,14 @@ fn lines_side_by_side(
         return false;
     }
     let band_width = BAND_TIP_MAX_SEPARATION_IN_PEN_WIDTHS * stroke_width;
-    if chord.hypot() <= band_width {
+    let separation = chord.hypot();
+    if separation <= band_width {
         return false;
     }
     let (common, behind) = apart_behind(vertices, a, b, stroke_width);
     common >= CUSP_MIN_STROKE_IN_PEN_WIDTHS * stroke_width
         && behind > band_width
-        && behind < a.at.distance(b.at) + CUSP_MIN_DIVERGENCE_IN_PEN_WIDTHS * stroke_width
+        && behind < separation + CUSP_MIN_DIVERGENCE_IN_PEN_WIDTHS * stroke_width
 }
 
 /// How far back the strokes of ends `a` and `b` are compared (the cusp's look-back, as far as the
@@ -1066,11 +1067,11 @@ fn acute_corner_may_miss(
         return false;
     }
     let back = ACUTE_ARMS_LOOK_BACK_IN_PEN_WIDTHS * stroke_width;
-    let apart_behind = point_behind(vertices, a, back)
+    let apart_back = point_behind(vertices, a, back)
         .0
         .distance(point_behind(vertices, b, back).0);
     ua.dot(ub) < CUSP_MAX_ANGLE_DEGREES.to_radians().cos()
-        || apart_behind > a.at.distance(b.at) + CUSP_MIN_DIVERGENCE_IN_PEN_WIDTHS * stroke_width
+        || apart_back > a.at.distance(b.at) + CUSP_MIN_DIVERGENCE_IN_PEN_WIDTHS * stroke_width
 }
 
 /// How far back along both strokes [`acute_corner_may_miss`] compares them, in pen widths.
@@ -1100,12 +1101,7 @@ struct BridgeEnd {
 /// crest's side overshoots; `dumbbell-clean-005` and `spikes-thin-004` broke on dev, two thick
 /// letters on val).
 fn unbent(end: &BridgeEnd) -> Option<Vec2> {
-    let along = end.outward?;
-    let (sin, cos) = (-end.bend).sin_cos();
-    Some(Vec2::new(
-        along.x * cos - along.y * sin,
-        along.x * sin + along.y * cos,
-    ))
+    Some(end.outward?.rotate_scale(Vec2::from_angle(-end.bend)))
 }
 
 /// DECISION: where a corner bridge's corner is one of its ends (a stroke drawn right up to the
@@ -1742,14 +1738,10 @@ mod tests {
         // The two ends of a gap over the crest of a tight zigzag, 6 px apart, their strokes
         // climbing at 30° either side of the vertical. Carried on, the bends of their last
         // pixels turn both ends nearly upright, and those lines meet far above the crest.
-        let rotate = |v: Vec2, angle: f64| {
-            let (sin, cos) = angle.sin_cos();
-            Vec2::new(v.x * cos - v.y * sin, v.x * sin + v.y * cos)
-        };
         let (up_right, up_left) = (Vec2::new(0.5, -0.866), Vec2::new(-0.5, -0.866));
         let end = |at: Point, stroke_way: Vec2, bend: f64| BridgeEnd {
             at,
-            outward: Some(rotate(stroke_way, bend)),
+            outward: Some(stroke_way.rotate_scale(Vec2::from_angle(bend))),
             bend,
             behind: None,
         };

@@ -89,11 +89,7 @@ fn end_direction(points: &[Point], reach: f64, skip: f64) -> Option<(Vec2, f64)>
             // end lies skip + half a reach beyond the middle of the near chord.
             let extrapolated = turn * (skip + 0.5 * chord.hypot()) / chord.hypot().max(1e-9);
             bend = extrapolated.clamp(-MAX_EXTRAPOLATED_TURN, MAX_EXTRAPOLATED_TURN);
-            let (sin, cos) = bend.sin_cos();
-            direction = Vec2::new(
-                direction.x * cos - direction.y * sin,
-                direction.x * sin + direction.y * cos,
-            );
+            direction = direction.rotate_scale(Vec2::from_angle(bend));
         }
     }
     Some((direction, bend))
