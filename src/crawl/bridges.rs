@@ -1013,12 +1013,12 @@ fn lines_side_by_side(
     b: &BridgeableEnd,
     stroke_width: f64,
 ) -> bool {
-    let (Some(ua), Some(ub)) = (a.outward, b.outward) else {
+    let Some((ua, ub)) = free_ends_ways(a, b) else {
         return false;
     };
     let chord = b.at - a.at;
     let beside = chord.dot(ua).abs().max(chord.dot(ub).abs()) < chord.hypot() * SAME_WAY_COSINE;
-    if a.attached || b.attached || ua.dot(ub) < SAME_WAY_COSINE || !beside {
+    if ua.dot(ub) < SAME_WAY_COSINE || !beside {
         return false;
     }
     let band_width = BAND_TIP_MAX_SEPARATION_IN_PEN_WIDTHS * stroke_width;
@@ -1030,6 +1030,14 @@ fn lines_side_by_side(
     common >= CUSP_MIN_STROKE_IN_PEN_WIDTHS * stroke_width
         && behind > band_width
         && behind < separation + CUSP_MIN_DIVERGENCE_IN_PEN_WIDTHS * stroke_width
+}
+
+/// The ways two free ends point; `None` if either is a T-end or a dot.
+fn free_ends_ways(a: &BridgeableEnd, b: &BridgeableEnd) -> Option<(Vec2, Vec2)> {
+    if a.attached || b.attached {
+        return None;
+    }
+    Some((a.outward?, b.outward?))
 }
 
 /// How far back the strokes of ends `a` and `b` are compared (the cusp's look-back, as far as the
@@ -1060,12 +1068,9 @@ fn acute_corner_may_miss(
     b: &BridgeableEnd,
     stroke_width: f64,
 ) -> bool {
-    let (Some(ua), Some(ub)) = (a.outward, b.outward) else {
+    let Some((ua, ub)) = free_ends_ways(a, b) else {
         return false;
     };
-    if a.attached || b.attached {
-        return false;
-    }
     let back = ACUTE_ARMS_LOOK_BACK_IN_PEN_WIDTHS * stroke_width;
     let apart_back = point_behind(vertices, a, back)
         .0
@@ -1345,10 +1350,7 @@ fn cusp_shape(
     b: &BridgeableEnd,
     stroke_width: f64,
 ) -> Option<BridgeShape> {
-    if a.attached || b.attached {
-        return None;
-    }
-    let (ua, ub) = (a.outward?, b.outward?);
+    let (ua, ub) = free_ends_ways(a, b)?;
     if ua.dot(ub) < CUSP_MAX_ANGLE_DEGREES.to_radians().cos() {
         return None;
     }
