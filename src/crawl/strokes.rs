@@ -940,6 +940,41 @@ mod tests {
         );
     }
 
+    #[test]
+    fn the_sides_of_a_neck_go_on_across_their_gaps_not_into_each_other() {
+        // A neck 5 px wide (a pen of 3 px) between two flaring outlines, both sides broken by a
+        // 12 px gap at the same height. The left side's upper piece stops 3 px short of the
+        // right one's with its tip curled 34° towards it: its line runs into the right end, a
+        // corner bridge across the neck shorter than either gap. Each side goes on across its
+        // own gap.
+        let mut upper_left = line((-20.0, 0.0), (0.0, 20.0));
+        upper_left.extend(line((0.0, 24.0), (0.0, 33.0)));
+        upper_left.push((2.0, 36.0));
+        let mut upper_right = line((25.0, 0.0), (5.0, 20.0));
+        upper_right.extend(line((5.0, 24.0), (5.0, 40.0)));
+        let mut lower_left = line((0.0, 52.0), (0.0, 72.0));
+        lower_left.extend(line((-4.0, 76.0), (-20.0, 92.0)));
+        let mut lower_right = line((5.0, 52.0), (5.0, 72.0));
+        lower_right.extend(line((9.0, 76.0), (25.0, 92.0)));
+        let strokes: Vec<Stroke> = [upper_left, upper_right, lower_left, lower_right]
+            .iter()
+            .map(|points| open(points))
+            .collect();
+        let curves = connect(&strokes, Method::Strokes, 4.0, 3.0);
+        assert_eq!(curves.len(), 2, "{curves:?}");
+        for x in [-20.0, 25.0] {
+            let (top, bottom) = (Point::new(x, 0.0), Point::new(x, 92.0));
+            assert!(
+                curves.iter().any(|curve| {
+                    let (first, last) = (curve.points[0], curve.points[curve.points.len() - 1]);
+                    (first.distance(top) < 2.0 && last.distance(bottom) < 2.0)
+                        || (first.distance(bottom) < 2.0 && last.distance(top) < 2.0)
+                }),
+                "no side from ({x}, 0) to ({x}, 92): {curves:?}"
+            );
+        }
+    }
+
     /// Traces `strokes` (a thin pen) and checks that they come out as two curves, one along
     /// y = 0 and one along y = 3.
     fn assert_one_curve_along_each_line(strokes: &[Stroke]) {
