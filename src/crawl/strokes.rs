@@ -975,6 +975,34 @@ mod tests {
         }
     }
 
+    #[test]
+    fn an_outline_turns_back_at_the_end_of_a_stub_its_t_end_runs_on_along() {
+        // A cloud's notch: the left lobe comes down into the right lobe's stroke at the origin
+        // (a T-end, the two lobes' ink touching there), and the right lobe's stroke starts 12 px
+        // further down, at the notch's point, straight below. The outline goes down to that
+        // point and back up: one closed curve through it (a pen of 3 px, one 10 px gap at the
+        // top, where the pen came back to its start).
+        let mut right = line((0.0, 12.0), (0.0, 0.0));
+        right.extend(&line((0.0, 0.0), (20.0, -20.0))[1..]);
+        right.extend(&line((20.0, -20.0), (20.0, -50.0))[1..]);
+        right.extend(&line((20.0, -50.0), (4.0, -60.0))[1..]);
+        let mut left = line((-6.0, -60.0), (-20.0, -40.0));
+        left.extend(&line((-20.0, -40.0), (-1.0, -4.0))[1..]);
+        left.push((0.0, 0.0));
+        let mut left = open(&left);
+        left.ends[1] = StrokeEnd::Attached(Point::new(0.0, 0.0));
+        let curves = connect(&[open(&right), left], Method::Strokes, 4.0, 3.0);
+        assert_eq!(curves.len(), 1, "{curves:?}");
+        assert!(curves[0].closed, "{curves:?}");
+        assert!(
+            curves[0]
+                .points
+                .iter()
+                .any(|p| p.distance(Point::new(0.0, 12.0)) < 2.0),
+            "{curves:?}"
+        );
+    }
+
     /// Traces `strokes` (a thin pen) and checks that they come out as two curves, one along
     /// y = 0 and one along y = 3.
     fn assert_one_curve_along_each_line(strokes: &[Stroke]) {
