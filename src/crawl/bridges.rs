@@ -287,7 +287,81 @@ pub(super) fn match_gap_bridges(
             result.attached.push((on_gap.end, on_gap.at));
         }
     }
+    bridge_cut_arms(
+        vertices,
+        ends,
+        &mut result,
+        &attached,
+        typical_gap,
+        stroke_width,
+    );
     result
+}
+
+/// DECISION: an arm cut off a corner that a line went on through ([`super::through`]) ends on
+/// the corner point, like a T-end; a free end that no bridge took and whose line (as measured or
+/// along its stroke, [`unbent`]) points at that corner point, within the straight turn limit and
+/// the ordinary gap limit, goes on from the corner point along the arm: the two strokes of a
+/// "K" that meet on its stem where the stem is broken, the arm drawn into the stem's lower half
+/// and the leg starting a gap away. The corner point is where they turn. Cheapest first (as
+/// straight bridges cost), each end once. Measured on the benchmark: dev 318 → 319 (a "K"),
+/// val unchanged.
+fn bridge_cut_arms(
+    vertices: &StrokeVertices,
+    ends: &[BridgeableEnd],
+    result: &mut GapBridges,
+    attached: &HashSet<u32>,
+    typical_gap: f64,
+    stroke_width: f64,
+) {
+    let mut used: HashSet<u32> = result.bridges.iter().flat_map(|b| [b.a, b.b]).collect();
+    used.extend(attached.iter().copied());
+    let limit = BRIDGE_MAX_IN_TYPICAL_GAPS * typical_gap;
+    let straight_limit = MAX_STRAIGHT_TURN_DEGREES.to_radians();
+    // (cost, arm, free end, corner point)
+    let mut options: Vec<(f64, u32, u32, Point)> = Vec::new();
+    for &(arm, corner) in &result.cuts {
+        if used.contains(&arm) {
+            continue;
+        }
+        let at = vertices.positions[corner as usize];
+        for free in ends
+            .iter()
+            .filter(|e| !e.attached && !used.contains(&e.vertex))
+        {
+            let to_corner = at - free.at;
+            let length = to_corner.hypot();
+            if length == 0.0 || (length - stroke_width).max(0.0) > limit {
+                continue;
+            }
+            let toward = to_corner / length;
+            let end = BridgeEnd {
+                at: free.at,
+                outward: free.outward,
+                bend: free.bend,
+                behind: None,
+            };
+            let turn = |way: Option<Vec2>| {
+                way.map_or(f64::INFINITY, |u| u.dot(toward).clamp(-1.0, 1.0).acos())
+            };
+            let least = turn(end.outward).min(turn(unbent(&end)));
+            if least <= straight_limit {
+                options.push((continuation_cost(length, least, 0.0), arm, free.vertex, at));
+            }
+        }
+    }
+    options.sort_by(|x, y| x.0.total_cmp(&y.0).then((x.1, x.2).cmp(&(y.1, y.2))));
+    for (_, arm, free, at) in options {
+        if used.contains(&arm) || used.contains(&free) {
+            continue;
+        }
+        used.extend([arm, free]);
+        result.bridges.push(Bridge {
+            a: arm,
+            b: free,
+            via: vec![at],
+        });
+    }
 }
 
 /// The greedy matching of ends, cheapest bridge first.

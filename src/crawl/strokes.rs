@@ -1003,6 +1003,39 @@ mod tests {
         );
     }
 
+    #[test]
+    fn a_k_whose_stem_is_broken_where_its_arms_meet_keeps_arm_and_leg_together() {
+        // A "K" on a 2-px pen: the stem's upper half stops 8 px above where the arm meets it,
+        // the arm runs on into the stem's lower half (one stroke, a corner), and the leg starts
+        // 6 px from that corner. Beside it, a line with two 6 px gaps sets the hand's gap. The stem goes on through the corner; the arm, cut off it, goes on
+        // to the leg: the stem and the "<" are two curves.
+        let mut arm_and_stem = line((40.0, 12.0), (0.0, 40.0));
+        arm_and_stem.extend(&line((0.0, 40.0), (0.0, 80.0))[1..]);
+        let strokes = vec![
+            open(&line((0.0, 0.0), (0.0, 32.0))),
+            open(&arm_and_stem),
+            open(&line((3.0, 45.0), (30.0, 80.0))),
+            open(&line((100.0, 0.0), (100.0, 30.0))),
+            open(&line((100.0, 36.0), (100.0, 66.0))),
+            open(&line((100.0, 72.0), (100.0, 100.0))),
+        ];
+        let curves = connect(&strokes, Method::Strokes, 3.0, 2.0);
+        assert_eq!(curves.len(), 3, "{curves:?}");
+        assert!(
+            has_straight_curve(&curves, (0.0, 0.0), (0.0, 80.0)),
+            "{curves:?}"
+        );
+        let near = |p: Point, x: f64, y: f64| p.distance(Point::new(x, y)) < 3.0;
+        assert!(
+            curves.iter().any(|c| {
+                let (first, last) = (c.points[0], c.points[c.points.len() - 1]);
+                (near(first, 40.0, 12.0) && near(last, 30.0, 80.0))
+                    || (near(first, 30.0, 80.0) && near(last, 40.0, 12.0))
+            }),
+            "{curves:?}"
+        );
+    }
+
     /// Traces `strokes` (a thin pen) and checks that they come out as two curves, one along
     /// y = 0 and one along y = 3.
     fn assert_one_curve_along_each_line(strokes: &[Stroke]) {
