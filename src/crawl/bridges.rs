@@ -11,7 +11,7 @@ use std::collections::{HashMap, HashSet};
 use kurbo::{Point, Vec2};
 
 use super::strokes::{point_key, PointKey, StrokeVertices};
-use super::through::{through_candidates, ThroughCorner};
+use super::through::{angle, through_candidates, ThroughCorner};
 use crate::geometry::polyline::{distance_to_segment, polyline_length};
 use crate::geometry::UnionFind;
 use crate::strokes::MIN_LOOP_SAMPLES;
@@ -317,7 +317,15 @@ fn bridge_cut_arms(
     let mut used: HashSet<u32> = result.bridges.iter().flat_map(|b| [b.a, b.b]).collect();
     used.extend(attached.iter().copied());
     let limit = BRIDGE_MAX_IN_TYPICAL_GAPS * typical_gap;
+    // The ink gap is the distance less a pen width: no farther end can be within the limit.
+    let reach = limit + stroke_width;
     let straight_limit = MAX_STRAIGHT_TURN_DEGREES.to_radians();
+    // The open free ends by x, swept like `ends_within`: a page of noise has many of both.
+    let mut open: Vec<&BridgeableEnd> = ends
+        .iter()
+        .filter(|e| !e.attached && !used.contains(&e.vertex))
+        .collect();
+    open.sort_by(|a, b| a.at.x.total_cmp(&b.at.x).then(a.vertex.cmp(&b.vertex)));
     // (cost, arm, free end, corner point)
     let mut options: Vec<(f64, u32, u32, Point)> = Vec::new();
     for &(arm, corner) in &result.cuts {
@@ -325,10 +333,8 @@ fn bridge_cut_arms(
             continue;
         }
         let at = vertices.positions[corner as usize];
-        for free in ends
-            .iter()
-            .filter(|e| !e.attached && !used.contains(&e.vertex))
-        {
+        let first = open.partition_point(|e| e.at.x < at.x - reach);
+        for free in open[first..].iter().take_while(|e| e.at.x <= at.x + reach) {
             let to_corner = at - free.at;
             let length = to_corner.hypot();
             if length == 0.0 || (length - stroke_width).max(0.0) > limit {
@@ -341,9 +347,7 @@ fn bridge_cut_arms(
                 bend: free.bend,
                 behind: None,
             };
-            let turn = |way: Option<Vec2>| {
-                way.map_or(f64::INFINITY, |u| u.dot(toward).clamp(-1.0, 1.0).acos())
-            };
+            let turn = |way: Option<Vec2>| way.map_or(f64::INFINITY, |u| angle(u, toward));
             let least = turn(end.outward).min(turn(unbent(&end)));
             if least <= straight_limit {
                 options.push((continuation_cost(length, least, 0.0), arm, free.vertex, at));
@@ -1294,7 +1298,7 @@ fn bridge_shape(
         Vec2::ZERO
     };
     let turn = |outward: Option<Vec2>, direction: Vec2| -> f64 {
-        outward.map_or(0.0, |o| o.dot(direction).clamp(-1.0, 1.0).acos())
+        outward.map_or(0.0, |o| angle(o, direction))
     };
     let (turn_a, turn_b) = (turn(a.outward, unit), turn(b.outward, -unit));
     let straight_limit = MAX_STRAIGHT_TURN_DEGREES.to_radians();

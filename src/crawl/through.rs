@@ -213,7 +213,7 @@ pub(super) fn through_candidates(
 }
 
 /// The angle between two unit vectors, in radians.
-fn angle(a: Vec2, b: Vec2) -> f64 {
+pub(super) fn angle(a: Vec2, b: Vec2) -> f64 {
     a.dot(b).clamp(-1.0, 1.0).acos()
 }
 
