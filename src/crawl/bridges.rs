@@ -137,8 +137,9 @@ const CORNER_AT_END_SLACK: f64 = 0.2;
 /// Two parallel ends closer than this (pen widths) are a band's two sides, not a corner.
 const BAND_SIDES_MAX_GAP_IN_PEN_WIDTHS: f64 = 0.5;
 
-/// Two ends point the same way, and one lies more beside the other than ahead of it, where the
-/// cosine of the angle between them is at least this (45°).
+/// Two ends point the same way (the two ends of a cusp, of lines side by side, of a corner that
+/// comes last), and one lies more beside the other than ahead of it, where the cosine of the
+/// angle between them is at least this (45°).
 const SAME_WAY_COSINE: f64 = std::f64::consts::FRAC_1_SQRT_2;
 
 /// Rays closer to parallel than this (the sine of the angle between them) do not meet.
@@ -1204,7 +1205,7 @@ fn acute_corner_may_miss(
     let apart_back = point_behind(vertices, a, back)
         .0
         .distance(point_behind(vertices, b, back).0);
-    ua.dot(ub) < CUSP_MAX_ANGLE_DEGREES.to_radians().cos()
+    ua.dot(ub) < SAME_WAY_COSINE
         || apart_back > a.at.distance(b.at) + CUSP_MIN_DIVERGENCE_IN_PEN_WIDTHS * stroke_width
 }
 
@@ -1440,9 +1441,6 @@ const CUSP_LOOK_BACK_IN_PEN_WIDTHS: f64 = 8.0;
 /// Each stroke must reach at least this far back (pen widths) for its divergence to tell.
 const CUSP_MIN_STROKE_IN_PEN_WIDTHS: f64 = 3.0;
 
-/// The two ends of a cusp point the same way within this angle (degrees).
-const CUSP_MAX_ANGLE_DEGREES: f64 = 45.0;
-
 /// The end of a tip's short side may lie this many band widths
 /// ([`BAND_TIP_MAX_SEPARATION_IN_PEN_WIDTHS`]) across from the long side: a spike's sides are
 /// up to about two pen widths apart where one of them stops short of the tip.
@@ -1489,7 +1487,7 @@ fn cusp_shape(
     stroke_width: f64,
 ) -> Option<BridgeShape> {
     let (ua, ub) = free_ends_ways(a, b)?;
-    if ua.dot(ub) < CUSP_MAX_ANGLE_DEGREES.to_radians().cos() {
+    if ua.dot(ub) < SAME_WAY_COSINE {
         return None;
     }
     let separation = a.at.distance(b.at);
@@ -1572,7 +1570,6 @@ fn staggered_tip(
         .any(|d| d >= at_end + CUSP_MIN_DIVERGENCE_IN_PEN_WIDTHS * stroke_width)
 }
 
-/// The points of `end`'s stroke, from that end to the other.
 /// The step (pixels) at which a bridge's path is checked against the strokes beside it.
 const ALONGSIDE_STEP_PX: f64 = 1.0;
 
@@ -1631,6 +1628,7 @@ fn alongside_length(
     covered
 }
 
+/// The points of `end`'s stroke, from that end to the other.
 fn stroke_points_from(vertices: &StrokeVertices, end: &BridgeableEnd) -> Vec<Point> {
     let of_stroke = &vertices.of_stroke[end.stroke];
     let points = of_stroke.iter().map(|&v| vertices.positions[v as usize]);

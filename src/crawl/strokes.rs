@@ -1007,8 +1007,9 @@ mod tests {
     fn a_k_whose_stem_is_broken_where_its_arms_meet_keeps_arm_and_leg_together() {
         // A "K" on a 2-px pen: the stem's upper half stops 8 px above where the arm meets it,
         // the arm runs on into the stem's lower half (one stroke, a corner), and the leg starts
-        // 6 px from that corner. Beside it, a line with two 6 px gaps sets the hand's gap. The stem goes on through the corner; the arm, cut off it, goes on
-        // to the leg: the stem and the "<" are two curves.
+        // 6 px from that corner. Beside it, a line with two 6 px gaps sets the hand's gap. The
+        // stem goes on through the corner; the arm, cut off it, goes on to the leg: the stem and
+        // the "<" are two curves.
         let mut arm_and_stem = line((40.0, 12.0), (0.0, 40.0));
         arm_and_stem.extend(&line((0.0, 40.0), (0.0, 80.0))[1..]);
         let strokes = vec![
