@@ -288,14 +288,10 @@ pub(super) fn match_gap_bridges(
             result.attached.push((on_gap.end, on_gap.at));
         }
     }
-    bridge_cut_arms(
-        vertices,
-        ends,
-        &mut result,
-        &attached,
-        typical_gap,
-        stroke_width,
-    );
+    // Ends a bridge took or that ended on a gap take no more.
+    let mut used = bridged;
+    used.extend(attached);
+    bridge_cut_arms(vertices, ends, &mut result, used, typical_gap, stroke_width);
     result
 }
 
@@ -311,12 +307,10 @@ fn bridge_cut_arms(
     vertices: &StrokeVertices,
     ends: &[BridgeableEnd],
     result: &mut GapBridges,
-    attached: &HashSet<u32>,
+    mut used: HashSet<u32>,
     typical_gap: f64,
     stroke_width: f64,
 ) {
-    let mut used: HashSet<u32> = result.bridges.iter().flat_map(|b| [b.a, b.b]).collect();
-    used.extend(attached.iter().copied());
     let limit = BRIDGE_MAX_IN_TYPICAL_GAPS * typical_gap;
     // The ink gap is the distance less a pen width: no farther end can be within the limit.
     let reach = limit + stroke_width;
@@ -342,14 +336,10 @@ fn bridge_cut_arms(
                 continue;
             }
             let toward = to_corner / length;
-            let end = BridgeEnd {
-                at: free.at,
-                outward: free.outward,
-                bend: free.bend,
-                behind: None,
+            // A dot has no line to point with.
+            let Some(least) = least_turn(&BridgeEnd::of(free, None), toward) else {
+                continue;
             };
-            let turn = |way: Option<Vec2>| way.map_or(f64::INFINITY, |u| angle(u, toward));
-            let least = turn(end.outward).min(turn(unbent(&end)));
             if least <= straight_limit {
                 options.push((continuation_cost(length, least, 0.0), arm, free.vertex, at));
             }
@@ -840,18 +830,8 @@ fn bridge_candidates(
         }
         let shape = bridge_shape(
             || acute_corner_may_miss(vertices, &a, &b, stroke_width),
-            BridgeEnd {
-                at: a.at,
-                outward: a.outward,
-                bend: a.bend,
-                behind: ink_behind(vertices, &a, stroke_width),
-            },
-            BridgeEnd {
-                at: b.at,
-                outward: b.outward,
-                bend: b.bend,
-                behind: ink_behind(vertices, &b, stroke_width),
-            },
+            BridgeEnd::of(&a, ink_behind(vertices, &a, stroke_width)),
+            BridgeEnd::of(&b, ink_behind(vertices, &b, stroke_width)),
             rims,
             stroke_width,
         )
@@ -1223,6 +1203,18 @@ struct BridgeEnd {
     behind: Option<Point>,
 }
 
+impl BridgeEnd {
+    /// The bridge end of `end`, with `behind` as [`ink_behind`] finds it (or none).
+    fn of(end: &BridgeableEnd, behind: Option<Point>) -> Self {
+        Self {
+            at: end.at,
+            outward: end.outward,
+            bend: end.bend,
+            behind,
+        }
+    }
+}
+
 /// DECISION: an end's direction as measured carries the stroke's bend on to the end, which
 /// points an arc's end along its tangent; but on a thin pen the last pixels of a stroke curl by
 /// 15° and more with the pen's jitter, and the carried bend then turns the end's line away from
@@ -1237,6 +1229,12 @@ struct BridgeEnd {
 /// letters on val).
 fn unbent(end: &BridgeEnd) -> Option<Vec2> {
     Some(end.outward?.rotate_scale(Vec2::from_angle(-end.bend)))
+}
+
+/// The smaller of the turns (radians) from `end`'s line, as measured or [`unbent`], into the
+/// unit `direction`; `None` for a dot.
+fn least_turn(end: &BridgeEnd, direction: Vec2) -> Option<f64> {
+    Some(angle(end.outward?, direction).min(angle(unbent(end)?, direction)))
 }
 
 /// DECISION: where a corner bridge's corner is one of its ends (a stroke drawn right up to the
@@ -1304,11 +1302,11 @@ fn bridge_shape(
     let (turn_a, turn_b) = (turn(a.outward, unit), turn(b.outward, -unit));
     let straight_limit = MAX_STRAIGHT_TURN_DEGREES.to_radians();
     // A straight bridge may turn by the limit from an end's measured direction or from its
-    // stroke's chord ([`unbent`]); it costs the turn as measured.
-    let least_turn = |end: &BridgeEnd, direction: Vec2| -> f64 {
-        turn(end.outward, direction).min(turn(unbent(end), direction))
-    };
-    let (straight_a, straight_b) = (least_turn(&a, unit), least_turn(&b, -unit));
+    // stroke's chord ([`unbent`]); it costs the turn as measured. A dot turns by nothing.
+    let (straight_a, straight_b) = (
+        least_turn(&a, unit).unwrap_or(0.0),
+        least_turn(&b, -unit).unwrap_or(0.0),
+    );
     let straight = (straight_a <= straight_limit && straight_b <= straight_limit).then(|| {
         let length = (distance - rims).max(0.0);
         BridgeShape {
