@@ -834,16 +834,20 @@ mod tests {
             .collect()
     }
 
+    /// Whether `curve` ends within `within` of `from` at one end and of `to` at the other.
+    fn runs_between(curve: &Polyline, from: (f64, f64), to: (f64, f64), within: f64) -> bool {
+        let (from, to) = (Point::from(from), Point::from(to));
+        let (first, last) = (curve.points[0], curve.points[curve.points.len() - 1]);
+        (first.distance(from) < within && last.distance(to) < within)
+            || (first.distance(to) < within && last.distance(from) < within)
+    }
+
     /// Whether some curve runs from near `from` to near `to` (either way), within 2 px of the
     /// straight line between them all along.
     fn has_straight_curve(curves: &[Polyline], from: (f64, f64), to: (f64, f64)) -> bool {
-        let (from, to) = (Point::from(from), Point::from(to));
         let axis = kurbo::Line::new(from, to);
         curves.iter().any(|curve| {
-            let (first, last) = (curve.points[0], curve.points[curve.points.len() - 1]);
-            let ends_match = (first.distance(from) < 4.0 && last.distance(to) < 4.0)
-                || (first.distance(to) < 4.0 && last.distance(from) < 4.0);
-            ends_match
+            runs_between(curve, from, to, 4.0)
                 && curve
                     .points
                     .iter()
@@ -963,13 +967,10 @@ mod tests {
         let curves = connect(&strokes, Method::Strokes, 4.0, 3.0);
         assert_eq!(curves.len(), 2, "{curves:?}");
         for x in [-20.0, 25.0] {
-            let (top, bottom) = (Point::new(x, 0.0), Point::new(x, 92.0));
             assert!(
-                curves.iter().any(|curve| {
-                    let (first, last) = (curve.points[0], curve.points[curve.points.len() - 1]);
-                    (first.distance(top) < 2.0 && last.distance(bottom) < 2.0)
-                        || (first.distance(bottom) < 2.0 && last.distance(top) < 2.0)
-                }),
+                curves
+                    .iter()
+                    .any(|curve| runs_between(curve, (x, 0.0), (x, 92.0), 2.0)),
                 "no side from ({x}, 0) to ({x}, 92): {curves:?}"
             );
         }
@@ -1026,13 +1027,10 @@ mod tests {
             has_straight_curve(&curves, (0.0, 0.0), (0.0, 80.0)),
             "{curves:?}"
         );
-        let near = |p: Point, x: f64, y: f64| p.distance(Point::new(x, y)) < 3.0;
         assert!(
-            curves.iter().any(|c| {
-                let (first, last) = (c.points[0], c.points[c.points.len() - 1]);
-                (near(first, 40.0, 12.0) && near(last, 30.0, 80.0))
-                    || (near(first, 30.0, 80.0) && near(last, 40.0, 12.0))
-            }),
+            curves
+                .iter()
+                .any(|c| runs_between(c, (40.0, 12.0), (30.0, 80.0), 3.0)),
             "{curves:?}"
         );
     }
