@@ -97,7 +97,43 @@ impl SkeletonGraph {
             used[j] = true;
             chosen.push((i, j));
         }
+        if ends.len() == 4 {
+            if let Some(outline) =
+                self.outline_instead_of_turn_back(&ends, &chosen, direction_scale)
+            {
+                chosen = outline;
+            }
+        }
         record_pairs(node, &ends, &chosen, pairing);
+    }
+
+    /// DECISION: at a four-way junction, a pair whose two ends leave side by side (within 45°)
+    /// would turn the pen back on itself. When the straightest pairing leaves such a pair, the
+    /// junction is not a crossing but the mouth of a narrow neck drawn onto a line (its two
+    /// T-junctions merged): each side of the neck goes on into the line on its own side, and the
+    /// short stretch of line across the mouth is left out. Returns that pairing, or `None` when
+    /// `chosen` has no turn-back or no pairing without one exists.
+    fn outline_instead_of_turn_back(
+        &self,
+        ends: &[BranchEnd],
+        chosen: &[(usize, usize)],
+        direction_scale: f64,
+    ) -> Option<Vec<(usize, usize)>> {
+        let directions: Vec<kurbo::Vec2> = ends
+            .iter()
+            .map(|&(b, s)| self.leaving_direction(b, s, direction_scale))
+            .collect();
+        let turns_back = |i: usize, j: usize| directions[i].dot(directions[j]) > TURN_BACK_COSINE;
+        if !chosen.iter().any(|&(i, j)| turns_back(i, j)) {
+            return None;
+        }
+        let angle = |k: usize| directions[k].y.atan2(directions[k].x);
+        let mut order: Vec<usize> = (0..ends.len()).collect();
+        order.sort_by(|&i, &j| angle(i).total_cmp(&angle(j)).then(i.cmp(&j)));
+        let allowed = |i: usize, j: usize| ends[i].0 != ends[j].0 && !turns_back(i, j);
+        let turn = |i: usize, j: usize| 1.0 + directions[i].dot(directions[j]);
+        let pairs = non_crossing_matching(&order, &allowed, &turn);
+        (pairs.len() * 2 == ends.len()).then_some(pairs)
     }
 
     /// The pairing of `ends` (leaving in `directions`) at a junction on an outline whose parts
@@ -280,6 +316,10 @@ fn chord_straightness(a: (Point, kurbo::Vec2), b: (Point, kurbo::Vec2)) -> f64 {
     // Arriving along −a's tangent, leaving along b's; each compared with the chord.
     -(b.1.dot(along) - a.1.dot(along)) / 2.0
 }
+
+/// Two branch ends leaving a junction within 45° of each other leave side by side: pairing them
+/// turns the pen back (the same limit as the bridges' "same way", see `crawl::bridges`).
+const TURN_BACK_COSINE: f64 = std::f64::consts::FRAC_1_SQRT_2;
 
 /// Orders the two sides of a band that leave a junction in the same direction (radians): far
 /// below any angle between real branches.

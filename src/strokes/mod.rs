@@ -201,6 +201,44 @@ mod tests {
         }
     }
 
+    #[test]
+    fn a_narrow_neck_drawn_onto_a_line_turns_into_it_on_both_sides() {
+        // A vertical line 3 px wide and, to its right, a neck: two horizontal lines 3 px wide,
+        // 6 px apart centre to centre, drawn onto it (a dumbbell's neck meeting a circle). Its
+        // two T-junctions lie within a link's length and merge into one four-way junction; the
+        // straightest pairing would run the line straight down and turn the neck's sides back
+        // into each other. Each side turns into the line on its own side instead.
+        let mut mask = Bitmap::new(80, 80);
+        for y in 0..80 {
+            for x in 0..80 {
+                let (px, py) = (x as f64 + 0.5, y as f64 + 0.5);
+                let line = (px - 20.0).abs() <= 1.5 && (10.0..70.0).contains(&py);
+                let side = |centre: f64| (py - centre).abs() <= 1.5 && (20.0..70.0).contains(&px);
+                mask.set(x, y, line || side(37.0) || side(43.0));
+            }
+        }
+        let skeleton = crate::raster::thin::thin(&mask);
+        let strokes = extract_strokes(&skeleton, &mask, 3.0);
+        let joins = |side_y: f64, line_end_y: f64| {
+            strokes.iter().any(|stroke| {
+                let points = &stroke.line.points;
+                let (first, last) = (points[0], points[points.len() - 1]);
+                let at_line_end =
+                    |p: Point| (p.y - line_end_y).abs() <= 3.0 && (p.x - 20.0).abs() <= 3.0;
+                let at_side_end = |p: Point| (p.y - side_y).abs() <= 3.0 && p.x >= 64.0;
+                at_line_end(first) && at_side_end(last) || at_line_end(last) && at_side_end(first)
+            })
+        };
+        assert!(
+            joins(37.0, 10.0),
+            "the upper side does not turn up the line: {strokes:?}"
+        );
+        assert!(
+            joins(43.0, 70.0),
+            "the lower side does not turn down the line: {strokes:?}"
+        );
+    }
+
     fn strokes_of(grid: &str, stroke_width: f64) -> Vec<Stroke> {
         {
             let g = Bitmap::from_grid(grid);
