@@ -64,11 +64,8 @@ impl SkeletonGraph {
             .iter()
             .any(|&(b, _)| self.branches[b].strand_of.is_some());
         if on_outline && ends.len() <= MAX_ENDS_FOR_EXACT_PAIRING {
-            let directions: Vec<kurbo::Vec2> = ends
-                .iter()
-                .map(|&(b, s)| self.leaving_direction(b, s, direction_scale))
-                .collect();
-            let pairs = self.pairs_without_crossing(&ends, &directions);
+            let directions = self.leaving_directions(&ends, direction_scale);
+            let pairs = self.pairs_without_crossing(&ends, &directions, &|_, _| true);
             record_pairs(node, &ends, &pairs, pairing);
             return;
         }
@@ -119,31 +116,32 @@ impl SkeletonGraph {
         chosen: &[(usize, usize)],
         direction_scale: f64,
     ) -> Option<Vec<(usize, usize)>> {
-        let directions: Vec<kurbo::Vec2> = ends
-            .iter()
-            .map(|&(b, s)| self.leaving_direction(b, s, direction_scale))
-            .collect();
+        let directions = self.leaving_directions(ends, direction_scale);
         let turns_back = |i: usize, j: usize| directions[i].dot(directions[j]) > TURN_BACK_COSINE;
         if !chosen.iter().any(|&(i, j)| turns_back(i, j)) {
             return None;
         }
-        let angle = |k: usize| directions[k].y.atan2(directions[k].x);
-        let mut order: Vec<usize> = (0..ends.len()).collect();
-        order.sort_by(|&i, &j| angle(i).total_cmp(&angle(j)).then(i.cmp(&j)));
-        let allowed = |i: usize, j: usize| ends[i].0 != ends[j].0 && !turns_back(i, j);
-        let turn = |i: usize, j: usize| 1.0 + directions[i].dot(directions[j]);
-        let pairs = non_crossing_matching(&order, &allowed, &turn);
+        let pairs = self.pairs_without_crossing(ends, &directions, &|i, j| !turns_back(i, j));
         (pairs.len() * 2 == ends.len()).then_some(pairs)
+    }
+
+    /// The direction each of `ends` leaves its junction in.
+    fn leaving_directions(&self, ends: &[BranchEnd], direction_scale: f64) -> Vec<kurbo::Vec2> {
+        ends.iter()
+            .map(|&(b, s)| self.leaving_direction(b, s, direction_scale))
+            .collect()
     }
 
     /// The pairing of `ends` (leaving in `directions`) at a junction on an outline whose parts
     /// touch: no two pairs cross (an outline of a solid never crosses itself), as many ends as
     /// possible go on, and of such pairings the straightest. The two sides of one double strand
-    /// are never paired with each other (that would close the band on itself).
+    /// are never paired with each other (that would close the band on itself), nor two ends
+    /// `also_allowed` refuses.
     fn pairs_without_crossing(
         &self,
         ends: &[BranchEnd],
         directions: &[kurbo::Vec2],
+        also_allowed: &dyn Fn(usize, usize) -> bool,
     ) -> Vec<(usize, usize)> {
         let angle = |k: usize| {
             let (b, at_start) = ends[k];
@@ -156,7 +154,9 @@ impl SkeletonGraph {
         order.sort_by(|&i, &j| angle(i).total_cmp(&angle(j)).then(i.cmp(&j)));
         let strand = |k: usize| self.branches[ends[k].0].strand_of;
         let allowed = |i: usize, j: usize| {
-            ends[i].0 != ends[j].0 && (strand(i).is_none() || strand(i) != strand(j))
+            ends[i].0 != ends[j].0
+                && (strand(i).is_none() || strand(i) != strand(j))
+                && also_allowed(i, j)
         };
         let turn = |i: usize, j: usize| 1.0 + directions[i].dot(directions[j]);
         non_crossing_matching(&order, &allowed, &turn)
