@@ -880,6 +880,26 @@ mod tests {
     }
 
     #[test]
+    fn a_stem_broken_below_a_rounded_corner_goes_on_through_it() {
+        // An "E"'s stem with its gap just below the middle bar, the corner rounded off the stem's
+        // line by thinning: its sample sits 3 px along the bar. From the lower stem's end the
+        // corner lies 31° off the stem, the kept arm turns 45° from that line; along the stem to
+        // where the arm is measured, the end goes straight on. The stem goes on through.
+        let mut upper_and_bar = line((0.0, 0.0), (0.0, 36.0));
+        upper_and_bar.push((3.0, 40.0));
+        upper_and_bar.extend(line((7.0, 40.0), (40.0, 40.0)));
+        let strokes = vec![open(&upper_and_bar), open(&line((0.0, 45.0), (0.0, 80.0)))];
+        let curves = connect(&strokes, Method::Strokes, 4.0, 2.0);
+        let stem = curves
+            .iter()
+            .find(|curve| runs_between(curve, (0.0, 0.0), (0.0, 80.0), 4.0));
+        assert!(
+            stem.is_some_and(|stem| stem.points.iter().all(|p| p.x.abs() <= 3.5)),
+            "the stem does not go on through: {curves:?}"
+        );
+    }
+
+    #[test]
     fn lines_side_by_side_whose_tips_touch_go_on_past_the_hairpin() {
         // Two lines 6 px apart (two pen widths), each broken 8–9 px above where the lower
         // pieces' tips touch: the skeleton joins those two pieces in a hairpin. Each upper
