@@ -172,15 +172,16 @@ pub(super) fn through_candidates(
                 (angle(outward, towards), turns[keep])
             };
             let straight_on = turn_at_end <= max_turn && turn_into_arm <= max_turn && clearly;
-            let (keep, cut, turn_at_end, turn_into_arm) = match straight_on {
-                true => (keep, cut, turn_at_end, turn_into_arm),
-                false if hairpin || distance > arm => continue,
-                false => match straight_on_to_arm_point(corner, end.at, outward) {
-                    Some((keep, turn_at_end, turn_into_arm)) => {
-                        (keep, 1 - keep, turn_at_end, turn_into_arm)
-                    }
-                    None => continue,
-                },
+            let (keep, cut, turn_at_end, turn_into_arm) = if straight_on {
+                (keep, cut, turn_at_end, turn_into_arm)
+            } else if hairpin || distance > arm {
+                continue;
+            } else if let Some((keep, turn_at_end, turn_into_arm)) =
+                straight_on_to_arm_point(corner, end.at, outward)
+            {
+                (keep, 1 - keep, turn_at_end, turn_into_arm)
+            } else {
+                continue;
             };
             let cost = continuation_cost(distance, turn_at_end, turn_into_arm);
             candidates.push(ThroughCandidate {
