@@ -139,21 +139,34 @@ pub fn extract_strokes_and_bands(
 mod tests {
     use super::*;
 
-    /// Two lines `width` px wide through (0, 0) at `slope_a` and `slope_b` (dy/dx), 60 px to
-    /// either side, inked on a mask, thinned, and traced into strokes.
-    fn crossing_strokes(slope_a: f64, slope_b: f64, width: f64) -> Vec<Stroke> {
-        let mut mask = Bitmap::new(140, 140);
-        for y in 0..140 {
-            for x in 0..140 {
-                let (px, py) = (x as f64 - 70.0 + 0.5, y as f64 - 70.0 + 0.5);
-                let near = |slope: f64| {
-                    (py - slope * px).abs() / slope.hypot(1.0) <= width / 2.0 && px.abs() <= 60.0
-                };
-                mask.set(x, y, near(slope_a) || near(slope_b));
+    /// Strokes traced from a `width` × `height` mask inked at every pixel whose centre (x + 0.5,
+    /// y + 0.5) `ink` holds for, thinned, for a pen of `pen` px.
+    fn strokes_of_ink(
+        width: usize,
+        height: usize,
+        pen: f64,
+        ink: impl Fn(f64, f64) -> bool,
+    ) -> Vec<Stroke> {
+        let mut mask = Bitmap::new(width, height);
+        for y in 0..height {
+            for x in 0..width {
+                mask.set(x, y, ink(x as f64 + 0.5, y as f64 + 0.5));
             }
         }
         let skeleton = crate::raster::thin::thin(&mask);
-        extract_strokes(&skeleton, &mask, width)
+        extract_strokes(&skeleton, &mask, pen)
+    }
+
+    /// Two lines `width` px wide through (0, 0) at `slope_a` and `slope_b` (dy/dx), 60 px to
+    /// either side, inked on a mask, thinned, and traced into strokes.
+    fn crossing_strokes(slope_a: f64, slope_b: f64, width: f64) -> Vec<Stroke> {
+        strokes_of_ink(140, 140, width, |x, y| {
+            let (px, py) = (x - 70.0, y - 70.0);
+            let near = |slope: f64| {
+                (py - slope * px).abs() / slope.hypot(1.0) <= width / 2.0 && px.abs() <= 60.0
+            };
+            near(slope_a) || near(slope_b)
+        })
     }
 
     #[test]
@@ -175,18 +188,11 @@ mod tests {
         // middle (the pen's jitter): the skeleton joins them there. Each line goes on along
         // itself; the crossing pairings, as straight from the junction's centre, would swap the
         // lines over.
-        let mut mask = Bitmap::new(140, 20);
-        for y in 0..20 {
-            for x in 0..140 {
-                let (px, py) = (x as f64 + 0.5, y as f64 + 0.5);
-                let on_line =
-                    |centre: f64| (py - centre).abs() <= 1.0 && (10.0..130.0).contains(&px);
-                let contact = (py - 10.0).abs() <= 2.0 && (px - 70.0).abs() <= 1.5;
-                mask.set(x, y, on_line(8.0) || on_line(12.0) || contact);
-            }
-        }
-        let skeleton = crate::raster::thin::thin(&mask);
-        let strokes = extract_strokes(&skeleton, &mask, 2.0);
+        let strokes = strokes_of_ink(140, 20, 2.0, |px, py| {
+            let on_line = |centre: f64| (py - centre).abs() <= 1.0 && (10.0..130.0).contains(&px);
+            let contact = (py - 10.0).abs() <= 2.0 && (px - 70.0).abs() <= 1.5;
+            on_line(8.0) || on_line(12.0) || contact
+        });
         for centre in [8.0, 12.0] {
             assert!(
                 strokes.iter().any(|stroke| {
@@ -208,17 +214,11 @@ mod tests {
         // two T-junctions lie within a link's length and merge into one four-way junction; the
         // straightest pairing would run the line straight down and turn the neck's sides back
         // into each other. Each side turns into the line on its own side instead.
-        let mut mask = Bitmap::new(80, 80);
-        for y in 0..80 {
-            for x in 0..80 {
-                let (px, py) = (x as f64 + 0.5, y as f64 + 0.5);
-                let line = (px - 20.0).abs() <= 1.5 && (10.0..70.0).contains(&py);
-                let side = |centre: f64| (py - centre).abs() <= 1.5 && (20.0..70.0).contains(&px);
-                mask.set(x, y, line || side(37.0) || side(43.0));
-            }
-        }
-        let skeleton = crate::raster::thin::thin(&mask);
-        let strokes = extract_strokes(&skeleton, &mask, 3.0);
+        let strokes = strokes_of_ink(80, 80, 3.0, |px, py| {
+            let line = (px - 20.0).abs() <= 1.5 && (10.0..70.0).contains(&py);
+            let side = |centre: f64| (py - centre).abs() <= 1.5 && (20.0..70.0).contains(&px);
+            line || side(37.0) || side(43.0)
+        });
         let joins = |side_y: f64, line_end_y: f64| {
             strokes.iter().any(|stroke| {
                 let points = &stroke.line.points;
