@@ -965,6 +965,32 @@ mod tests {
     }
 
     #[test]
+    fn lines_side_by_side_whose_staggered_tips_curl_together_stay_apart() {
+        // Two lines 6 px apart (two pen widths), each broken once, ending side by side on the
+        // left 2 px apart along the lines, each tip curling towards the other line by 17° over
+        // its last 5 px, as a thin pen's tips do: along their measured directions one end lies
+        // more ahead of the other than beside it; along their strokes they lie side by side.
+        let mut upper = line((40.0, 0.0), (6.0, 0.0));
+        upper.extend([(4.0, 0.2), (2.5, 0.6), (1.0, 1.2)]);
+        let mut lower = line((40.0, 6.0), (8.0, 6.0));
+        lower.extend([(6.0, 5.8), (4.5, 5.4), (3.0, 4.8)]);
+        let strokes = vec![
+            open(&upper),
+            open(&line((52.0, 0.0), (100.0, 0.0))),
+            open(&lower),
+            open(&line((56.0, 6.0), (100.0, 6.0))),
+        ];
+        let curves = connect(&strokes, Method::Strokes, 4.0, 3.0);
+        assert_eq!(curves.len(), 2, "{curves:?}");
+        for y in [0.0, 6.0] {
+            assert!(
+                has_straight_curve(&curves, (0.0, y), (100.0, y)),
+                "no curve along y = {y}: {curves:?}"
+            );
+        }
+    }
+
+    #[test]
     fn the_sides_of_a_neck_go_on_across_their_gaps_not_into_each_other() {
         // A neck 5 px wide (a pen of 3 px) between two flaring outlines, both sides broken by a
         // 12 px gap at the same height. The left side's upper piece stops 3 px short of the
