@@ -119,6 +119,16 @@ const LOOP_GAP_MAX_IN_TYPICAL_GAPS: f64 = 3.5;
 /// ... and at most this share of the loop.
 const LOOP_GAP_MAX_SHARE_WIDE: f64 = 0.15;
 
+/// DECISION: a gap at least this many typical gaps wide is an opening. A loop closes across one
+/// opening, the gap where the pen came back to its start, and not across two: two facing arcs
+/// "( )" drawn in skip strokes have two, and are two open curves. Every bridge of such a loop
+/// that is an opening is taken out again, the ordinary ones among them too. Measured on the
+/// benchmark: the loops that close have their second widest bridge at most 1.64 typical gaps
+/// wide; the facing arcs that closed, 1.87 and 1.91. From 1.75 to 1.85 the same two drawings went
+/// right on the development split, none wrong (dev 325 → 327, val 311 → 314); 1.65 broke a
+/// house's loop, 1.5 two thin stars.
+const OPENING_MIN_IN_TYPICAL_GAPS: f64 = 1.75;
+
 /// Bridges costing this much or more (the last resorts: single through-corner bridges and
 /// cusps) take no part in augmenting the matching.
 const AUGMENT_MAX_COST: f64 = 1e8;
@@ -227,6 +237,7 @@ pub(super) fn match_gap_bridges(
     } else {
         settled_under(typical_gap)
     };
+    let matched = matching.without_two_openings(matched, typical_gap);
     let junction_of: HashMap<u32, Point> = ends
         .iter()
         .filter(|end| end.attached)
@@ -647,6 +658,56 @@ impl<'a> Matching<'a> {
             }
         }
         result
+    }
+
+    /// Takes out every opening ([`OPENING_MIN_IN_TYPICAL_GAPS`]) of a loop that has two or more.
+    /// Only loops of plain bridges between free ends are judged: a loop through a junction, a
+    /// corner gone through or a cusp is left as it is.
+    fn without_two_openings(
+        &self,
+        matched: Vec<&'a Candidate>,
+        typical_gap: f64,
+    ) -> Vec<&'a Candidate> {
+        let plain = |m: &Candidate| m.through.is_none() && m.between_free_ends;
+        let strokes = |m: &Candidate| (self.stroke_of[&m.a], self.stroke_of[&m.b]);
+        let mut groups = StrokeGroups::new(self.vertices);
+        let mut closing = Vec::new();
+        for m in matched.iter().filter(|m| plain(m)) {
+            let (a, b) = strokes(m);
+            if groups.same(a, b) {
+                closing.push(a);
+            }
+            groups.join(a, b, 0.0);
+        }
+        let mut mixed = HashSet::new();
+        for m in matched.iter().filter(|m| !plain(m)) {
+            mixed.insert(groups.root(self.stroke_of[&m.a]));
+            if m.through.is_none() {
+                mixed.insert(groups.root(self.stroke_of[&m.b]));
+            }
+        }
+        let loops: HashSet<usize> = closing
+            .into_iter()
+            .map(|stroke| groups.root(stroke))
+            .filter(|root| !mixed.contains(root))
+            .collect();
+        let is_opening = |m: &Candidate| {
+            plain(m) && self.ink_gap(m) >= OPENING_MIN_IN_TYPICAL_GAPS * typical_gap
+        };
+        let mut openings: HashMap<usize, usize> = HashMap::new();
+        for m in matched.iter().filter(|m| is_opening(m)) {
+            *openings.entry(groups.root(strokes(m).0)).or_default() += 1;
+        }
+        matched
+            .into_iter()
+            .filter(|m| {
+                if !is_opening(m) {
+                    return true;
+                }
+                let root = groups.root(strokes(m).0);
+                !(loops.contains(&root) && openings[&root] >= 2)
+            })
+            .collect()
     }
 
     /// DECISION: the gap where the pen comes back to where it started is often the widest of an

@@ -764,6 +764,33 @@ mod tests {
     }
 
     #[test]
+    fn facing_arcs_drawn_in_skip_strokes_stay_two_open_curves() {
+        // "( )" on a circle of radius 60, each arc drawn in six strokes with 5 px pen lifts
+        // (ink to ink, a pen of 3 px); the openings at the top and the bottom are 9.8 and 12 px
+        // (1.8 and 2.2 times the mean gap): the one an ordinary bridge, the other a loop's
+        // closing gap, were it the only opening.
+        let lift = (8.0_f64 / 60.0).to_degrees();
+        let arc_of = |from: f64, to: f64| -> Vec<Stroke> {
+            let piece = (to - from - 5.0 * lift) / 6.0;
+            (0..6)
+                .map(|k| {
+                    let start = from + k as f64 * (piece + lift);
+                    arc((100.0, 100.0), 60.0, start, start + piece, 4.0)
+                })
+                .collect()
+        };
+        let (top, bottom) = (
+            (12.8_f64 / 60.0).to_degrees(),
+            (15.0_f64 / 60.0).to_degrees(),
+        );
+        let mut strokes = arc_of(-90.0 + top / 2.0, 90.0 - bottom / 2.0);
+        strokes.extend(arc_of(90.0 + bottom / 2.0, 270.0 - top / 2.0));
+        let curves = connect(&strokes, Method::Strokes, 4.0, 3.0);
+        assert_eq!(curves.len(), 2, "{curves:?}");
+        assert!(curves.iter().all(|c| !c.closed));
+    }
+
+    #[test]
     fn a_spike_whose_side_stops_short_of_the_tip_turns_back_there() {
         // A narrow spike on a base line: its sides run 5 px apart (1.7 pen widths) up to where
         // the right side stops, 11 px short of the tip (the pen lifted on that side there), its
