@@ -239,6 +239,34 @@ mod tests {
         );
     }
 
+    #[test]
+    fn a_narrow_neck_whose_sides_meet_in_a_u_turns_into_the_line_on_both_sides() {
+        // As above, but the neck's two sides are joined at their far end by a short stroke
+        // across (the band's tip where its sides merged at a pen lift): the neck is one branch
+        // that leaves the four-way junction and comes back to it, which no pairing may join to
+        // itself. Its two ends leave side by side: each goes on into the line on its own side,
+        // and the line across the neck's mouth is left out.
+        let strokes = strokes_of_ink(80, 80, 3.0, |px, py| {
+            let line = (px - 20.0).abs() <= 1.5 && (10.0..70.0).contains(&py);
+            let side = |centre: f64| (py - centre).abs() <= 1.5 && (20.0..70.0).contains(&px);
+            let tip = (66.0..70.0).contains(&px) && (35.5..44.5).contains(&py);
+            line || side(37.0) || side(43.0) || tip
+        });
+        let round_the_neck = strokes.iter().any(|stroke| {
+            let points = &stroke.line.points;
+            let (first, last) = (points[0], points[points.len() - 1]);
+            let at_line_end =
+                |p: Point, y: f64| (p.y - y).abs() <= 3.0 && (p.x - 20.0).abs() <= 3.0;
+            let ends_on_line = at_line_end(first, 10.0) && at_line_end(last, 70.0)
+                || at_line_end(first, 70.0) && at_line_end(last, 10.0);
+            ends_on_line && points.iter().any(|p| p.x >= 60.0)
+        });
+        assert!(
+            round_the_neck,
+            "the line does not go round the neck: {strokes:?}"
+        );
+    }
+
     fn strokes_of(grid: &str, stroke_width: f64) -> Vec<Stroke> {
         {
             let g = Bitmap::from_grid(grid);
