@@ -8,6 +8,7 @@
 //! the crawl on sampled pen strokes, with bridges across the gaps between their free ends.
 
 pub mod algorithm;
+mod bands;
 mod bridges;
 pub mod neighbours;
 pub mod reconstruct;

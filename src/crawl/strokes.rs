@@ -16,6 +16,7 @@ use std::collections::{HashMap, HashSet, VecDeque};
 use kurbo::{Point, Vec2};
 
 use super::algorithm::Chain;
+use super::bands::splice_lone_bands;
 use super::bridges::{match_gap_bridges, BridgeableEnd, GapBridges};
 use super::reconstruct::{self, canonical_orientation, Reconstruction};
 use super::ReconstructError;
@@ -370,11 +371,29 @@ pub fn connect_strokes(strokes: &[Stroke], spacing: f64, stroke_width: f64) -> V
     // edges (a stroke's own, and one bridge per free end), so its components are already paths
     // and cycles: the shapes. The paper's stop would only cut a chain where an outline comes back
     // near itself (an '8', a narrow neck); which gaps close is decided by the bridges alone.
-    components(positions.len(), &edges)
+    // A wide stroke left on its own, no bridge taken, is a lone band ([`super::bands`]).
+    let wide_from: HashMap<u32, usize> = strokes
+        .iter()
+        .enumerate()
+        .filter(|(s, stroke)| stroke.wide && vertices.of_stroke[*s].len() >= 2)
+        .map(|(s, _)| (vertices.of_stroke[s][0], s))
+        .collect();
+    let (curves, is_band): (Vec<Polyline>, Vec<bool>) = components(positions.len(), &edges)
         .into_iter()
         .filter(|chain| chain.vertices.len() >= 2)
-        .map(|chain| chain_to_curve(chain, &vertices, &attachment, &vias))
-        .collect()
+        .map(|chain| {
+            let lone_band = !chain.closed
+                && [chain.vertices[0], chain.vertices[chain.vertices.len() - 1]]
+                    .iter()
+                    .filter_map(|v| wide_from.get(v))
+                    .any(|&s| vertices.of_stroke[s].len() == chain.vertices.len());
+            (
+                chain_to_curve(chain, &vertices, &attachment, &vias),
+                lone_band,
+            )
+        })
+        .unzip();
+    splice_lone_bands(curves, &is_band, stroke_width)
 }
 
 /// The connected components of a graph whose vertices have at most two edges: cycles (of at
@@ -520,6 +539,7 @@ mod tests {
                 false,
             ),
             ends: [StrokeEnd::Free, StrokeEnd::Free],
+            wide: false,
         }
     }
 
@@ -788,6 +808,43 @@ mod tests {
         let curves = connect(&strokes, Method::Strokes, 4.0, 3.0);
         assert_eq!(curves.len(), 2, "{curves:?}");
         assert!(curves.iter().all(|c| !c.closed));
+    }
+
+    #[test]
+    fn a_band_cut_off_at_its_base_goes_out_and_back_from_the_outline() {
+        // A closed outline (a square of side 100) and, 6 px right of its right side, a dash
+        // 40 px long standing out from it: a finger whose sides merged into one band of ink,
+        // the pen lifted at its base. Marked wide, it is spliced into the outline, out to its
+        // tip and back; a dash one pen wide (a sun's ray) stays a curve of its own.
+        let square = Stroke {
+            line: Polyline::new(
+                [(0.0, 0.0), (100.0, 0.0), (100.0, 100.0), (0.0, 100.0)]
+                    .into_iter()
+                    .map(Point::from)
+                    .collect(),
+                true,
+            ),
+            ends: [StrokeEnd::Free, StrokeEnd::Free],
+            wide: false,
+        };
+        for wide in [true, false] {
+            let dash = Stroke {
+                wide,
+                ..open(&line((106.0, 50.0), (146.0, 50.0)))
+            };
+            let strokes = crate::strokes::sample_strokes(&[square.clone(), dash], 4.0, 0.5);
+            let curves = connect(&strokes, Method::Strokes, 4.0, 3.0);
+            if wide {
+                assert_eq!(curves.len(), 1, "{curves:?}");
+                assert!(curves[0].closed);
+                assert!(
+                    curves[0].points.iter().any(|p| p.x > 140.0),
+                    "the outline does not reach the band's tip: {curves:?}"
+                );
+            } else {
+                assert_eq!(curves.len(), 2, "{curves:?}");
+            }
+        }
     }
 
     #[test]

@@ -68,6 +68,15 @@ struct BandJudge {
     stretch: usize,
 }
 
+impl BandJudge {
+    /// Whether ink of these widths along a branch is a band: its widest stretch clearly wider
+    /// than one stroke ([`DOUBLE_WIDTH_RATIO`], [`DOUBLE_MIN_EXCESS_PX`]).
+    fn is_band(&self, widths: &[Option<f64>]) -> bool {
+        let widest = widest_stretch(widths, self.stretch);
+        widest >= DOUBLE_WIDTH_RATIO * self.typical && widest >= self.typical + DOUBLE_MIN_EXCESS_PX
+    }
+}
+
 /// A lone dash whose end lies this near (pen widths) to a band's tip is judged as the band's
 /// next piece: gaps in a skip-stroke sketch are a few pen widths long.
 const BAND_GAP_REACH_IN_PEN_WIDTHS: f64 = 5.0;
@@ -217,6 +226,19 @@ impl SkeletonGraph {
             }
             tips = new_tips;
         }
+        // The lone dashes left that are bands all the same: not split (nothing says which way
+        // their outline runs), but marked, for the crawl to splice into the outline they stand
+        // on ([`crate::crawl`]'s lone bands).
+        for b in 0..self.branches.len() {
+            let Some((a, z)) = self.branches[b].nodes else {
+                continue;
+            };
+            let branch = &self.branches[b];
+            let lone = self.degree(a) == 1 && self.degree(z) == 1 && a != z;
+            if lone && !branch.removed && branch.strand_of.is_none() {
+                self.branches[b].wide = judge.is_band(&judge.widths[b]);
+            }
+        }
     }
 
     /// Splits `branch` into its two sides if it is a double strand; returns the free ends the
@@ -243,10 +265,7 @@ impl SkeletonGraph {
                 width.filter(|_| !near_junction)
             })
             .collect();
-        let widest = widest_stretch(&widths, judge.stretch);
-        if widest < DOUBLE_WIDTH_RATIO * judge.typical
-            || widest < judge.typical + DOUBLE_MIN_EXCESS_PX
-        {
+        if !judge.is_band(&widths) {
             return Vec::new();
         }
         self.bands.push(branch.points.clone());
@@ -317,6 +336,7 @@ impl SkeletonGraph {
             removed: false,
             strand_of: Some(branch),
             side: -1.0,
+            wide: false,
         });
         self.branches.len() - 1
     }
@@ -475,6 +495,32 @@ mod tests {
             .filter(|s| s.line.points.iter().all(|p| p.x > 123.0))
             .collect();
         assert_eq!(outer.len(), 2, "{strokes:?}");
+    }
+
+    #[test]
+    fn a_band_standing_apart_from_the_outline_is_marked_wide() {
+        // A finger of two lines 2.5 px apart (ink 6.5 px across, pen 4) whose base the pen
+        // lifted at, 6 px right of the square's side: a lone dash, not split (it goes on from
+        // no band), but marked as a band; a dash one pen wide beside it is not.
+        let mut mask = square_outline(150);
+        draw_line(&mut mask, (96.0, 28.75), (136.0, 28.75), PEN);
+        draw_line(&mut mask, (96.0, 31.25), (136.0, 31.25), PEN);
+        draw_line(&mut mask, (96.0, 52.0), (136.0, 52.0), PEN);
+        let strokes = extract_strokes(&thin(&mask), &mask, PEN);
+        let dash_at = |y: f64| -> Vec<&Stroke> {
+            strokes
+                .iter()
+                .filter(|s| {
+                    s.line
+                        .points
+                        .iter()
+                        .all(|p| p.x > 93.0 && (p.y - y).abs() < 4.0)
+                })
+                .collect()
+        };
+        let (finger, ray) = (dash_at(30.0), dash_at(52.0));
+        assert_eq!((finger.len(), ray.len()), (1, 1), "{strokes:?}");
+        assert!(finger[0].wide && !ray[0].wide, "{strokes:?}");
     }
 
     #[test]

@@ -39,6 +39,9 @@ pub(super) struct Branch {
     /// Which side of the band this copy traces, +1 (left, walking from the start) or −1; a
     /// U-turn goes out on the left and back on the right. 0 for a single stroke.
     pub(super) side: f64,
+    /// Set on a lone dash whose ink is a band clearly wider than one stroke that was not split
+    /// into sides ([`super::double`]): a narrow protrusion cut off at its base by a pen lift.
+    pub(super) wide: bool,
 }
 
 /// The label of pixels that lie on a branch (node pixels are labelled with their node).
@@ -179,6 +182,7 @@ impl SkeletonGraph {
                     removed: false,
                     strand_of: None,
                     side: 0.0,
+                    wide: false,
                 });
             }
         }
@@ -256,6 +260,7 @@ impl SkeletonGraph {
             removed: false,
             strand_of: None,
             side: 0.0,
+            wide: false,
         });
     }
 

@@ -180,6 +180,7 @@ impl SkeletonGraph {
             .map(|node| Stroke {
                 line: Polyline::new(vec![node.position], false),
                 ends: [StrokeEnd::Free, StrokeEnd::Free],
+                wide: false,
             })
             .collect()
     }
@@ -211,6 +212,7 @@ impl SkeletonGraph {
                     strokes.push(Stroke {
                         line: Polyline::new(points, false),
                         ends: [first_end, last_end],
+                        wide: branch.wide && leaving.0 == start_branch,
                     });
                 }
             }
@@ -240,6 +242,7 @@ impl SkeletonGraph {
                 strokes.push(Stroke {
                     line: Polyline::new(points, closed),
                     ends: [StrokeEnd::Free, StrokeEnd::Free],
+                    wide: false,
                 });
             }
         }

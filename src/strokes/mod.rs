@@ -45,6 +45,10 @@ pub struct Stroke {
     pub line: Polyline,
     /// How the first and the last point end; both [`StrokeEnd::Free`] for loops.
     pub ends: [StrokeEnd; 2],
+    /// Whether the stroke is a lone dash of ink clearly wider than one pen: a band, two
+    /// stretches of an outline merged (a narrow spike or finger cut off at its base by a pen
+    /// lift), traced along its middle.
+    pub wide: bool,
 }
 
 /// A bubble (a small loop between two junctions, the skeleton of a sliver of paper between two

@@ -64,6 +64,7 @@ pub fn sample_strokes(strokes: &[Stroke], spacing: f64, tolerance: f64) -> Vec<S
             Stroke {
                 line: stroke.line.simplify(tolerance).resample(stroke_spacing),
                 ends: stroke.ends,
+                wide: stroke.wide,
             }
         })
         .collect()

@@ -1,0 +1,215 @@
+//! Lone bands: a narrow protrusion of an outline (a spike, a finger, a tail) whose two sides
+//! merged into one band of ink and whose base the pen lifted at stands apart from the outline as
+//! a dash of its own. It is spliced back into the outline it stands on, out along its middle and
+//! back. Ours (issue 9, "outlines whose parts touch"); the paper has no notion of ink width.
+
+use kurbo::{Line, ParamCurve, ParamCurveNearest, Point};
+
+use crate::geometry::Polyline;
+
+/// DECISION: a lone band is spliced into a closed outline whose line passes within this many pen
+/// widths of one of its ends, the gap a pen lift leaves at the protrusion's base (gaps in a
+/// skip-stroke sketch are a few pen widths long; the same reach as a band's next piece across a
+/// gap in [`crate::strokes`]). Measured on the benchmark: dev 327 → 329, val 314 → 315 (three
+/// fingers and spikes cut off at their base), no drawing lost; a dash one pen wide (a sun's ray
+/// drawn short of the sun) is no band and is never spliced.
+const BASE_GAP_MAX_IN_PEN_WIDTHS: f64 = 5.0;
+
+/// The end must point at the outline: the line from it to its foot on the outline turns at most
+/// this much (degrees) from the band's direction there. A protrusion stands on its outline.
+const BASE_MAX_TURN_DEGREES: f64 = 45.0;
+
+/// The band's direction at an end is measured this many pen widths back along it.
+const DIRECTION_REACH_IN_PEN_WIDTHS: f64 = 2.0;
+
+/// A place on a closed curve: the segment from point `segment` to the next, at parameter `t`.
+#[derive(Clone, Copy)]
+struct Foot {
+    curve: usize,
+    segment: usize,
+    t: f64,
+    point: Point,
+    distance: f64,
+}
+
+/// Splices every lone band (`curves[k]` with `is_band[k]`, an open curve) that stands on a closed
+/// curve into it: from the foot of its base on the outline out to the base, along the band to its
+/// tip and back, and on along the outline. Traced once each way along the band's middle, the
+/// outline's two sides, merged within a pen width or so, both lie within the tolerance. Bands
+/// that stand on nothing are kept as they are.
+pub(super) fn splice_lone_bands(
+    curves: Vec<Polyline>,
+    is_band: &[bool],
+    stroke_width: f64,
+) -> Vec<Polyline> {
+    if !is_band.iter().any(|&band| band) {
+        return curves;
+    }
+    let reach = BASE_GAP_MAX_IN_PEN_WIDTHS * stroke_width;
+    let grid = SegmentGrid::new(&curves, reach);
+    let mut splices: Vec<(Foot, usize, bool)> = Vec::new();
+    for (k, curve) in curves.iter().enumerate() {
+        if !is_band[k] || curve.closed || curve.points.len() < 2 {
+            continue;
+        }
+        let base = [false, true]
+            .into_iter()
+            .filter_map(|at_last| {
+                let foot = stands_on(curve, at_last, &curves, &grid, reach, stroke_width)?;
+                Some((foot, at_last))
+            })
+            .min_by(|x, y| x.0.distance.total_cmp(&y.0.distance));
+        if let Some((foot, at_last)) = base {
+            splices.push((foot, k, at_last));
+        }
+    }
+    if splices.is_empty() {
+        return curves;
+    }
+    // Later places on a curve first, so that earlier indices stay valid.
+    splices.sort_by(|x, y| {
+        (x.0.curve, y.0.segment)
+            .cmp(&(y.0.curve, x.0.segment))
+            .then(y.0.t.total_cmp(&x.0.t))
+    });
+    let spliced: Vec<usize> = splices.iter().map(|&(_, k, _)| k).collect();
+    let mut curves = curves;
+    for (foot, k, at_last) in splices {
+        let mut band = curves[k].points.clone();
+        if at_last {
+            band.reverse();
+        }
+        // Out from the foot along the band to its tip, and back to the foot.
+        let mut excursion = vec![foot.point];
+        excursion.extend(band.iter().copied());
+        excursion.extend(band.iter().rev().skip(1).copied());
+        excursion.push(foot.point);
+        let outline = &mut curves[foot.curve].points;
+        let at = foot.segment + 1;
+        outline.splice(at..at, excursion);
+    }
+    curves
+        .into_iter()
+        .enumerate()
+        .filter(|(k, _)| !spliced.contains(k))
+        .map(|(_, curve)| curve)
+        .collect()
+}
+
+/// Where the band `curve` stands on a closed curve at its first (or last) point: the nearest
+/// point of another closed curve within `reach`, which the band's end points at and its other end
+/// lies farther from.
+fn stands_on(
+    curve: &Polyline,
+    at_last: bool,
+    curves: &[Polyline],
+    grid: &SegmentGrid,
+    reach: f64,
+    stroke_width: f64,
+) -> Option<Foot> {
+    let points = &curve.points;
+    let (end, far_end) = if at_last {
+        (points[points.len() - 1], points[0])
+    } else {
+        (points[0], points[points.len() - 1])
+    };
+    let back = DIRECTION_REACH_IN_PEN_WIDTHS * stroke_width;
+    let behind = point_back_from(points, at_last, back);
+    let outward = end - behind;
+    if outward.hypot() == 0.0 {
+        return None;
+    }
+    let outward = outward / outward.hypot();
+    let foot = grid.nearest(end, curves, reach)?;
+    let towards = foot.point - end;
+    let max_turn = BASE_MAX_TURN_DEGREES.to_radians().cos();
+    let points_at = towards.hypot() == 0.0 || outward.dot(towards / towards.hypot()) >= max_turn;
+    let sticks_out = grid
+        .nearest(far_end, curves, f64::INFINITY)
+        .is_none_or(|far| far.distance > foot.distance + stroke_width);
+    (points_at && sticks_out).then_some(foot)
+}
+
+/// The point `distance` back along `points` from its first (or last) point.
+fn point_back_from(points: &[Point], from_last: bool, distance: f64) -> Point {
+    let ordered: Vec<Point> = if from_last {
+        points.iter().rev().copied().collect()
+    } else {
+        points.to_vec()
+    };
+    let mut left = distance;
+    for pair in ordered.windows(2) {
+        let step = pair[0].distance(pair[1]);
+        if step >= left && step > 0.0 {
+            return pair[0].lerp(pair[1], left / step);
+        }
+        left -= step;
+    }
+    ordered[ordered.len() - 1]
+}
+
+/// The segments of the closed curves in square cells, for the nearest one to a point.
+struct SegmentGrid {
+    cell: f64,
+    cells: std::collections::HashMap<(i64, i64), Vec<(usize, usize)>>,
+}
+
+impl SegmentGrid {
+    fn new(curves: &[Polyline], cell: f64) -> Self {
+        let mut cells: std::collections::HashMap<(i64, i64), Vec<(usize, usize)>> =
+            std::collections::HashMap::new();
+        for (c, curve) in curves.iter().enumerate() {
+            if !curve.closed {
+                continue;
+            }
+            let n = curve.points.len();
+            for s in 0..n {
+                let (a, b) = (curve.points[s], curve.points[(s + 1) % n]);
+                let key = |p: Point| ((p.x / cell).floor() as i64, (p.y / cell).floor() as i64);
+                let (ka, kb) = (key(a), key(b));
+                for x in ka.0.min(kb.0)..=ka.0.max(kb.0) {
+                    for y in ka.1.min(kb.1)..=ka.1.max(kb.1) {
+                        cells.entry((x, y)).or_default().push((c, s));
+                    }
+                }
+            }
+        }
+        Self { cell, cells }
+    }
+
+    /// The nearest point of a closed curve's segment to `p` within `reach` (all of them for an
+    /// infinite reach).
+    fn nearest(&self, p: Point, curves: &[Polyline], reach: f64) -> Option<Foot> {
+        let key = (
+            (p.x / self.cell).floor() as i64,
+            (p.y / self.cell).floor() as i64,
+        );
+        let span = if reach.is_finite() {
+            (reach / self.cell).ceil() as i64
+        } else {
+            1
+        };
+        let mut best: Option<Foot> = None;
+        for x in key.0 - span..=key.0 + span {
+            for y in key.1 - span..=key.1 + span {
+                for &(c, s) in self.cells.get(&(x, y)).into_iter().flatten() {
+                    let curve = &curves[c];
+                    let n = curve.points.len();
+                    let line = Line::new(curve.points[s], curve.points[(s + 1) % n]);
+                    let nearest = line.nearest(p, 1e-9);
+                    let distance = nearest.distance_sq.sqrt();
+                    if distance <= reach && best.is_none_or(|b| distance < b.distance) {
+                        best = Some(Foot {
+                            curve: c,
+                            segment: s,
+                            t: nearest.t,
+                            point: line.eval(nearest.t),
+                            distance,
+                        });
+                    }
+                }
+            }
+        }
+        best
+    }
+}
