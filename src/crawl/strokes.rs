@@ -848,6 +848,29 @@ mod tests {
     }
 
     #[test]
+    fn a_step_whose_turns_fall_in_a_gap_is_bridged() {
+        // A line that steps down 14 px (a finger leaving a body's side) with the pen lifted
+        // over the step: the upper piece ends pointing right, the lower one starts 1 px further
+        // right and 10 px lower, its tip curled up-left. Neither a straight bridge nor a corner
+        // fits the two ends (each one's line passes the other end more than a pen width away);
+        // the step joins them.
+        let mut lower = vec![(1.0, 10.0), (3.0, 11.5), (5.5, 13.0)];
+        lower.extend(line((8.0, 14.0), (40.0, 14.0)));
+        let strokes = vec![
+            open(&line((-80.0, 0.0), (-45.0, 0.0))),
+            open(&line((-40.0, 0.0), (0.0, 0.0))),
+            open(&lower),
+            open(&line((45.0, 14.0), (80.0, 14.0))),
+        ];
+        let curves = connect(&strokes, Method::Strokes, 4.0, 3.0);
+        assert_eq!(curves.len(), 1, "{curves:?}");
+        assert!(
+            runs_between(&curves[0], (-80.0, 0.0), (80.0, 14.0), 2.0),
+            "{curves:?}"
+        );
+    }
+
+    #[test]
     fn a_spike_whose_side_stops_short_of_the_tip_turns_back_there() {
         // A narrow spike on a base line: its sides run 5 px apart (1.7 pen widths) up to where
         // the right side stops, 11 px short of the tip (the pen lifted on that side there), its
