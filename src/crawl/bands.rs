@@ -3,6 +3,8 @@
 //! a dash of its own. It is spliced back into the outline it stands on, out along its middle and
 //! back. Ours (issue 9, "outlines whose parts touch"); the paper has no notion of ink width.
 
+use std::collections::{HashMap, HashSet};
+
 use kurbo::{Line, ParamCurve, ParamCurveNearest, Point};
 
 use crate::geometry::Polyline;
@@ -66,13 +68,14 @@ pub(super) fn splice_lone_bands(
     if splices.is_empty() {
         return curves;
     }
-    // Later places on a curve first, so that earlier indices stay valid.
+    // On each curve, later places first, so that the earlier places' indices stay valid.
     splices.sort_by(|x, y| {
-        (x.0.curve, y.0.segment)
-            .cmp(&(y.0.curve, x.0.segment))
+        x.0.curve
+            .cmp(&y.0.curve)
+            .then(y.0.segment.cmp(&x.0.segment))
             .then(y.0.t.total_cmp(&x.0.t))
     });
-    let spliced: Vec<usize> = splices.iter().map(|&(_, k, _)| k).collect();
+    let spliced: HashSet<usize> = splices.iter().map(|&(_, k, _)| k).collect();
     let mut curves = curves;
     for (foot, k, at_last) in splices {
         let mut band = curves[k].points.clone();
@@ -125,8 +128,8 @@ fn stands_on(
     let max_turn = BASE_MAX_TURN_DEGREES.to_radians().cos();
     let points_at = towards.hypot() == 0.0 || outward.dot(towards / towards.hypot()) >= max_turn;
     let sticks_out = grid
-        .nearest(far_end, curves, f64::INFINITY)
-        .is_none_or(|far| far.distance > foot.distance + stroke_width);
+        .nearest(far_end, curves, foot.distance + stroke_width)
+        .is_none();
     (points_at && sticks_out).then_some(foot)
 }
 
@@ -151,13 +154,12 @@ fn point_back_from(points: &[Point], from_last: bool, distance: f64) -> Point {
 /// The segments of the closed curves in square cells, for the nearest one to a point.
 struct SegmentGrid {
     cell: f64,
-    cells: std::collections::HashMap<(i64, i64), Vec<(usize, usize)>>,
+    cells: HashMap<(i64, i64), Vec<(usize, usize)>>,
 }
 
 impl SegmentGrid {
     fn new(curves: &[Polyline], cell: f64) -> Self {
-        let mut cells: std::collections::HashMap<(i64, i64), Vec<(usize, usize)>> =
-            std::collections::HashMap::new();
+        let mut cells: HashMap<(i64, i64), Vec<(usize, usize)>> = HashMap::new();
         for (c, curve) in curves.iter().enumerate() {
             if !curve.closed {
                 continue;
@@ -177,18 +179,13 @@ impl SegmentGrid {
         Self { cell, cells }
     }
 
-    /// The nearest point of a closed curve's segment to `p` within `reach` (all of them for an
-    /// infinite reach).
+    /// The nearest point of a closed curve's segment to `p` within `reach`.
     fn nearest(&self, p: Point, curves: &[Polyline], reach: f64) -> Option<Foot> {
         let key = (
             (p.x / self.cell).floor() as i64,
             (p.y / self.cell).floor() as i64,
         );
-        let span = if reach.is_finite() {
-            (reach / self.cell).ceil() as i64
-        } else {
-            1
-        };
+        let span = (reach / self.cell).ceil() as i64;
         let mut best: Option<Foot> = None;
         for x in key.0 - span..=key.0 + span {
             for y in key.1 - span..=key.1 + span {

@@ -669,7 +669,10 @@ impl<'a> Matching<'a> {
         typical_gap: f64,
     ) -> Vec<&'a Candidate> {
         let plain = |m: &Candidate| m.through.is_none() && m.between_free_ends;
-        let strokes = |m: &Candidate| (self.stroke_of[&m.a], self.stroke_of[&m.b]);
+        let strokes = |m: &Candidate| {
+            let b = m.through.map_or_else(|| self.stroke_of[&m.b], |t| t.stroke);
+            (self.stroke_of[&m.a], b)
+        };
         let mut groups = StrokeGroups::new(self.vertices);
         let mut closing = Vec::new();
         for m in matched.iter().filter(|m| plain(m)) {
@@ -681,10 +684,9 @@ impl<'a> Matching<'a> {
         }
         let mut mixed = HashSet::new();
         for m in matched.iter().filter(|m| !plain(m)) {
-            mixed.insert(groups.root(self.stroke_of[&m.a]));
-            if m.through.is_none() {
-                mixed.insert(groups.root(self.stroke_of[&m.b]));
-            }
+            let (a, b) = strokes(m);
+            mixed.insert(groups.root(a));
+            mixed.insert(groups.root(b));
         }
         let loops: HashSet<usize> = closing
             .into_iter()

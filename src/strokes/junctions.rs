@@ -212,6 +212,7 @@ impl SkeletonGraph {
                     strokes.push(Stroke {
                         line: Polyline::new(points, false),
                         ends: [first_end, last_end],
+                        // A lone dash is a stroke of one branch.
                         wide: branch.wide && leaving.0 == start_branch,
                     });
                 }
