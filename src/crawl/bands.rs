@@ -7,6 +7,7 @@ use std::collections::{HashMap, HashSet};
 
 use kurbo::{Line, ParamCurve, ParamCurveNearest, Point};
 
+use super::strokes::point_at_length;
 use crate::geometry::Polyline;
 
 /// DECISION: a lone band is spliced into a closed outline whose line passes within this many pen
@@ -135,20 +136,12 @@ fn stands_on(
 
 /// The point `distance` back along `points` from its first (or last) point.
 fn point_back_from(points: &[Point], from_last: bool, distance: f64) -> Point {
-    let ordered: Vec<Point> = if from_last {
-        points.iter().rev().copied().collect()
+    if from_last {
+        let reversed: Vec<Point> = points.iter().rev().copied().collect();
+        point_at_length(&reversed, distance)
     } else {
-        points.to_vec()
-    };
-    let mut left = distance;
-    for pair in ordered.windows(2) {
-        let step = pair[0].distance(pair[1]);
-        if step >= left && step > 0.0 {
-            return pair[0].lerp(pair[1], left / step);
-        }
-        left -= step;
+        point_at_length(points, distance)
     }
-    ordered[ordered.len() - 1]
 }
 
 /// The segments of the closed curves in square cells, for the nearest one to a point.

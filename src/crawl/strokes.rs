@@ -97,7 +97,7 @@ fn end_direction(points: &[Point], reach: f64, skip: f64) -> Option<(Vec2, f64)>
 }
 
 /// The point `length` along the polyline from its first point (its last point if it is shorter).
-fn point_at_length(points: &[Point], length: f64) -> Point {
+pub(super) fn point_at_length(points: &[Point], length: f64) -> Point {
     let mut left = length;
     for pair in points.windows(2) {
         let step = pair[0].distance(pair[1]);
