@@ -120,10 +120,11 @@ fn stands_on(
     let back = DIRECTION_REACH_IN_PEN_WIDTHS * stroke_width;
     let behind = point_back_from(points, at_last, back);
     let outward = end - behind;
-    if outward.hypot() == 0.0 {
+    let length = outward.hypot();
+    if length == 0.0 {
         return None;
     }
-    let outward = outward / outward.hypot();
+    let outward = outward / length;
     let foot = grid.nearest(end, curves, reach)?;
     let towards = foot.point - end;
     let max_turn = BASE_MAX_TURN_DEGREES.to_radians().cos();
@@ -152,7 +153,10 @@ struct SegmentGrid {
 
 impl SegmentGrid {
     fn new(curves: &[Polyline], cell: f64) -> Self {
-        let mut cells: HashMap<(i64, i64), Vec<(usize, usize)>> = HashMap::new();
+        let mut grid = Self {
+            cell,
+            cells: HashMap::new(),
+        };
         for (c, curve) in curves.iter().enumerate() {
             if !curve.closed {
                 continue;
@@ -160,24 +164,28 @@ impl SegmentGrid {
             let n = curve.points.len();
             for s in 0..n {
                 let (a, b) = (curve.points[s], curve.points[(s + 1) % n]);
-                let key = |p: Point| ((p.x / cell).floor() as i64, (p.y / cell).floor() as i64);
-                let (ka, kb) = (key(a), key(b));
+                let (ka, kb) = (grid.cell_of(a), grid.cell_of(b));
                 for x in ka.0.min(kb.0)..=ka.0.max(kb.0) {
                     for y in ka.1.min(kb.1)..=ka.1.max(kb.1) {
-                        cells.entry((x, y)).or_default().push((c, s));
+                        grid.cells.entry((x, y)).or_default().push((c, s));
                     }
                 }
             }
         }
-        Self { cell, cells }
+        grid
+    }
+
+    /// The cell `p` lies in.
+    fn cell_of(&self, p: Point) -> (i64, i64) {
+        (
+            (p.x / self.cell).floor() as i64,
+            (p.y / self.cell).floor() as i64,
+        )
     }
 
     /// The nearest point of a closed curve's segment to `p` within `reach`.
     fn nearest(&self, p: Point, curves: &[Polyline], reach: f64) -> Option<Foot> {
-        let key = (
-            (p.x / self.cell).floor() as i64,
-            (p.y / self.cell).floor() as i64,
-        );
+        let key = self.cell_of(p);
         let span = (reach / self.cell).ceil() as i64;
         let mut best: Option<Foot> = None;
         for x in key.0 - span..=key.0 + span {
