@@ -3,6 +3,8 @@
 
 use std::collections::HashMap;
 
+use kurbo::Vec2;
+
 use crate::geometry::polyline::polyline_length;
 
 use super::graph::SkeletonGraph;
@@ -11,6 +13,28 @@ use super::graph::SkeletonGraph;
 /// of the direction opposite the spur, so the cosine between the spur and either side is below
 /// cos 120° = −0.5. A stroke's branch in a T or a crossing meets the others at about 90°.
 const CORNER_SPUR_MAX_COSINE: f64 = -0.5;
+
+/// How long a filled corner's spur may be ([`SkeletonGraph::fold_corner_spurs`]), in pixels.
+pub(super) struct CornerSpurs {
+    /// Never longer than this, however sharp the corner.
+    pub(super) max_length: f64,
+    /// At most this much longer than the corner's outer point lies from its centre lines'
+    /// meeting point.
+    pub(super) slack: f64,
+    pub(super) stroke_width: f64,
+}
+
+impl CornerSpurs {
+    /// The longest spur of a corner whose sides leave it along `side_a` and `side_b` (unit
+    /// vectors): the outer point of the ink lies `pen / 2 / sin(α / 2)` beyond the centre lines'
+    /// meeting point, α the angle between the sides.
+    fn longest(&self, side_a: Vec2, side_b: Vec2) -> f64 {
+        let half_angle = side_a.dot(side_b).clamp(-1.0, 1.0).acos() / 2.0;
+        // The floor keeps sides leaving the same way from dividing by zero; the cap takes over.
+        let outer_point = self.stroke_width / 2.0 / half_angle.sin().max(1e-6);
+        (outer_point + self.slack).min(self.max_length)
+    }
+}
 
 impl SkeletonGraph {
     /// Removes small loops: a branch from a node back to itself, and all but the shortest of
@@ -82,11 +106,12 @@ impl SkeletonGraph {
         }
     }
 
-    /// At a junction of exactly three branches where one is a spur shorter than `max_length`
-    /// pointing away from both others (each other branch leaves within 60° of the direction
-    /// opposite the spur), the spur is a filled corner: it is removed and the junction moves to
-    /// its tip, so the two sides meet there in a sharp corner.
-    pub(super) fn fold_corner_spurs(&mut self, max_length: f64, direction_scale: f64) {
+    /// At a junction of exactly three branches where one is a spur pointing away from both
+    /// others (each other branch leaves within 60° of the direction opposite the spur), no longer
+    /// than `spurs` allows for the angle between the two others, the spur is a filled corner: it
+    /// is removed and the junction moves to its tip, so the two sides meet there in a sharp
+    /// corner.
+    pub(super) fn fold_corner_spurs(&mut self, spurs: &CornerSpurs, direction_scale: f64) {
         for node in 0..self.nodes.len() {
             let ends = self.nodes[node].ends.clone();
             if ends.len() != 3 {
@@ -101,7 +126,7 @@ impl SkeletonGraph {
                 let far = if at_start { z } else { a };
                 if far == node
                     || self.degree(far) != 1
-                    || polyline_length(&branch.points, false) >= max_length
+                    || polyline_length(&branch.points, false) >= spurs.max_length
                 {
                     continue;
                 }
@@ -129,6 +154,13 @@ impl SkeletonGraph {
                 .filter(|&(b, _)| b != spur_branch)
                 .collect();
             if sides.len() != 2 {
+                continue;
+            }
+            let [side_a, side_b] = [sides[0], sides[1]]
+                .map(|(b, at_start)| self.leaving_direction(b, at_start, direction_scale));
+            if polyline_length(&self.branches[spur_branch].points, false)
+                > spurs.longest(side_a, side_b)
+            {
                 continue;
             }
             let tip = {
