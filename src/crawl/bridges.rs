@@ -134,7 +134,7 @@ const OPENING_MIN_IN_TYPICAL_GAPS: f64 = 1.75;
 const AUGMENT_MAX_COST: f64 = 1e8;
 
 /// A straight bridge may turn by at most this much at either end, in degrees.
-const MAX_STRAIGHT_TURN_DEGREES: f64 = 60.0;
+pub(super) const MAX_STRAIGHT_TURN_DEGREES: f64 = 60.0;
 
 /// Ends turning by more than this (degrees) may instead be joined at the corner where their lines
 /// meet.
