@@ -76,7 +76,7 @@ const CORNER_SPUR_MAX_LENGTH_FLOOR_PX: f64 = 6.0;
 /// corner's angle is a line going on past a junction, not a corner (the leg of an "A" with its
 /// gap just above the crossbar, whose lower piece the crossbar would otherwise turn into).
 /// Measured on the benchmark: 3 pen widths gain 2 drawings on each of seeds 1, 3 and 2 (the
-/// validation split) and lose none; 2 lost four thin or thick corners whose junction lies
+/// validation split) and lose none; 2 lost five thin or thick corners whose junction lies
 /// further in (seeds 1 and 2), 4 gained one drawing on each seed.
 const CORNER_SPUR_SLACK_IN_PEN_WIDTHS: f64 = 3.0;
 /// ... or than this many pixels, on a thin pen: a 2-px pen's corners at 75°–90° leave spurs of
