@@ -398,7 +398,7 @@ pub fn connect_strokes(strokes: &[Stroke], spacing: f64, stroke_width: f64) -> V
     splice_lone_bands(curves, &is_band, stroke_width)
 }
 
-/// DECISION (stop 24): an end that comes back onto its own chain reaches it within this much
+/// DECISION: (stop 24) an end that comes back onto its own chain reaches it within this much
 /// (pen widths, centre line to centre line: at most a pen width of paper between the inks).
 /// Measured on the benchmark: 1–1.5 pen widths fixed 2 of the 5 balloons that 2 fixes; 2.5
 /// broke drawings of dots.
@@ -412,7 +412,7 @@ const LOOP_MIN_LENGTH_IN_PEN_WIDTHS: f64 = 4.0 * std::f64::consts::PI;
 /// Directions at a loop's closing point are measured over this much of the chain (pen widths).
 const LOOP_CLOSING_ARM_IN_PEN_WIDTHS: f64 = 2.0;
 
-/// DECISION (stop 24): an open chain one of whose ends comes back onto the chain itself (within
+/// DECISION: (stop 24) an open chain one of whose ends comes back onto the chain itself (within
 /// [`LOOP_CLOSING_REACH_IN_PEN_WIDTHS`], attached at a junction on it or free), at least a
 /// loop's worth of samples from that end, and goes on into the chain there the way the loop runs
 /// (turning by at most a straight bridge's limit into the stretch of chain between the two) is a

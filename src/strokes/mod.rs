@@ -70,7 +70,7 @@ const DIRECTION_SCALE_FLOOR_PX: f64 = 4.0;
 const CORNER_SPUR_MAX_LENGTH_IN_PEN_WIDTHS: f64 = 6.0;
 /// The same in pixels, for thin pens.
 const CORNER_SPUR_MAX_LENGTH_FLOOR_PX: f64 = 6.0;
-/// DECISION (stop 24): a filled corner's spur reaches the corner's outer point, half a pen width
+/// DECISION: (stop 24) a filled corner's spur reaches the corner's outer point, half a pen width
 /// over the sine of half the sides' angle beyond where their centre lines meet, and thinning
 /// puts the junction up to this much (pen widths) further in: a spur longer than that for its
 /// corner's angle is a line going on past a junction, not a corner (the leg of an "A" with its
