@@ -413,10 +413,10 @@ const LOOP_MIN_LENGTH_IN_PEN_WIDTHS: f64 = 4.0 * std::f64::consts::PI;
 const LOOP_CLOSING_ARM_IN_PEN_WIDTHS: f64 = 2.0;
 
 /// DECISION: (stop 24) an open chain one of whose ends comes back onto the chain itself (within
-/// [`LOOP_CLOSING_REACH_IN_PEN_WIDTHS`], attached at a junction on it or free), at least a
-/// loop's worth of samples from that end, and goes on into the chain there the way the loop runs
-/// (turning by at most a straight bridge's limit into the stretch of chain between the two) is a
-/// loop with a tail: a balloon whose outline closes on its own first stroke where the string
+/// [`LOOP_CLOSING_REACH_IN_PEN_WIDTHS`], attached at a junction on it or free), at least
+/// [`LOOP_MIN_LENGTH_IN_PEN_WIDTHS`] along it, and goes on into the chain there the way the loop
+/// runs (turning by at most a straight bridge's limit into the stretch of chain between the two)
+/// is a loop with a tail: a balloon whose outline closes on its own first stroke where the string
 /// goes on from it. The loop from that end to the closing point comes out closed and the tail
 /// beyond it open. An end that comes in across the chain stays as it is: the bowl of a "P" or
 /// the end of a "6" meets its stem square (with no turn limit, letters broke on both splits).

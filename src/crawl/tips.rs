@@ -13,8 +13,8 @@ use crate::raster::bitmap::Bitmap;
 /// [`DETECTION_ARM_IN_PEN_WIDTHS`] from the rounded vertex: what an apex of 60° measures there.
 /// Wider corners lose less than the tolerance to thinning. The rounding lies inside the arms, so
 /// the measured turn falls short of the true one: tips of 60° drawn with 2–7 px pens and thinned
-/// measure 103°–111°, tips of 40° 121°–126° (design change, stop 24: 120° here let 41°–60° tips
-/// with a rounded skeleton through unrestored, the `stars` of seed 3 with a pen lift near the tip).
+/// measure 103°–111°, tips of 40° 121°–126° (design change, stop 24: at 120° tips of 41°–60°
+/// whose skeleton thinning had rounded were left unrestored, three stars of seed 3 among them).
 const MIN_TIP_TURN_DEGREES: f64 = 100.0;
 /// The arms' directions are measured over this much of the curve on each side of a vertex: long
 /// enough to reach past the rounded part of a 60° tip.

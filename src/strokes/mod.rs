@@ -300,9 +300,9 @@ mod tests {
         // An "A"'s leg with its gap just above the crossbar: the bar ends on the leg, whose upper
         // piece is a 3-px stub and whose lower piece runs on for 14 px, pointing away from both
         // the bar and the stub like a filled corner's spur, and shorter than the longest spur
-        // (18 px for a 3-px pen), but longer than a corner of the stub and the bar leaves (54°:
-        // 3.3 px to the outer point, plus the slack, 9 px). The lower piece stays: it is not
-        // folded away into a corner.
+        // (18 px for a 3-px pen), but longer than the spur of a corner between the stub and the
+        // bar can be (54° apart: 3.3 px to the outer point plus 9 px of slack). The lower piece
+        // stays: it is not folded away into a corner.
         let grid = "
             .....................
             ......#..............
