@@ -1121,6 +1121,40 @@ mod tests {
     }
 
     #[test]
+    fn a_k_whose_stem_is_broken_below_the_junction_keeps_its_stem_and_its_v() {
+        // A "K": the skeleton joins the upper stem and the leg in a corner at (0, 40), the arm
+        // ends on that junction (a T), and the lower stem starts 8 px below it. The stem goes
+        // on through the junction; the arm and the leg are one line turning there.
+        let mut upper_and_leg = line((0.0, 0.0), (0.0, 40.0));
+        upper_and_leg.extend(line((0.0, 40.0), (40.0, 70.0)).into_iter().skip(1));
+        let mut arm = open(&line((40.0, 10.0), (0.0, 40.0)));
+        arm.ends[1] = StrokeEnd::Attached(Point::new(0.0, 40.0));
+        let strokes = vec![
+            open(&upper_and_leg),
+            arm,
+            open(&line((0.0, 48.0), (0.0, 90.0))),
+        ];
+        let curves = connect(&strokes, Method::Strokes, 4.0, 3.0);
+        assert_eq!(curves.len(), 2, "{curves:?}");
+        assert!(
+            has_straight_curve(&curves, (0.0, 0.0), (0.0, 90.0)),
+            "{curves:?}"
+        );
+        let near = |curve: &Polyline, x: f64, y: f64| {
+            curve
+                .points
+                .iter()
+                .any(|p| p.distance(Point::new(x, y)) < 3.0)
+        };
+        assert!(
+            curves
+                .iter()
+                .any(|c| near(c, 40.0, 10.0) && near(c, 0.0, 40.0) && near(c, 40.0, 70.0)),
+            "{curves:?}"
+        );
+    }
+
+    #[test]
     fn a_stem_broken_just_below_a_crossbar_goes_on_through_the_corner() {
         // An "H"'s left stem with a gap just below the crossbar: the skeleton joins the upper
         // stem and the crossbar in an "L", and the lower stem ends 8 px below its corner,
