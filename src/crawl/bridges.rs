@@ -81,6 +81,7 @@ pub(super) struct GapBridges {
     pub(super) bridges: Vec<Bridge>,
     pub(super) cuts: Vec<(u32, u32)>,
     pub(super) attached: Vec<(u32, Point)>,
+    pub(super) typical_gap: f64,
 }
 
 /// Chooses the bridges across pen lifts: pairs of ends at most a few typical gaps apart, matched
@@ -110,7 +111,7 @@ const TYPICAL_GAP_MAX_IN_SPACINGS: f64 = 3.0;
 const MIN_STRAIGHT_GAPS: usize = 2;
 
 /// DECISION: a bridge may be at most this many typical gaps long; see [`match_gap_bridges`].
-const BRIDGE_MAX_IN_TYPICAL_GAPS: f64 = 2.0;
+pub(super) const BRIDGE_MAX_IN_TYPICAL_GAPS: f64 = 2.0;
 
 /// A bridge that clearly closes a loop may be this many typical gaps long; see
 /// [`Matching::closes_clearly`].
@@ -243,7 +244,10 @@ pub(super) fn match_gap_bridges(
         .filter(|end| end.attached)
         .map(|end| (end.vertex, end.at))
         .collect();
-    let mut result = GapBridges::default();
+    let mut result = GapBridges {
+        typical_gap,
+        ..GapBridges::default()
+    };
     // A second line through an opened corner (the other stroke of an "X" broken at its
     // crossing) goes on into the arm the first one cut: from the end to that arm's vertex,
     // through the corner.

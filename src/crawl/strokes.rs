@@ -17,7 +17,10 @@ use kurbo::{Line, ParamCurveNearest, Point, Vec2};
 
 use super::algorithm::Chain;
 use super::bands::splice_lone_bands;
-use super::bridges::{match_gap_bridges, BridgeableEnd, GapBridges, MAX_STRAIGHT_TURN_DEGREES};
+use super::bridges::{
+    match_gap_bridges, BridgeableEnd, GapBridges, BRIDGE_MAX_IN_TYPICAL_GAPS,
+    MAX_STRAIGHT_TURN_DEGREES,
+};
 use super::reconstruct::{self, canonical_orientation, Reconstruction};
 use super::through::angle;
 use super::ReconstructError;
@@ -345,6 +348,7 @@ pub fn connect_strokes(strokes: &[Stroke], spacing: f64, stroke_width: f64) -> V
         bridges,
         cuts,
         attached,
+        typical_gap,
     } = match_gap_bridges(&vertices, &ends, spacing, stroke_width);
     // An arm cut off an opened corner ends on the corner point, like a T-end.
     let cut: HashSet<(u32, u32)> = cuts.iter().flat_map(|&(a, b)| [(a, b), (b, a)]).collect();
@@ -382,7 +386,7 @@ pub fn connect_strokes(strokes: &[Stroke], spacing: f64, stroke_width: f64) -> V
     let (curves, is_band): (Vec<Polyline>, Vec<bool>) = components(positions.len(), &edges)
         .into_iter()
         .filter(|chain| chain.vertices.len() >= 2)
-        .flat_map(|chain| loop_and_tail(chain, &vertices, &attachment, stroke_width))
+        .flat_map(|chain| loop_and_tail(chain, &vertices, &attachment, stroke_width, typical_gap))
         .map(|chain| {
             let lone_band = !chain.closed
                 && [chain.vertices[0], chain.vertices[chain.vertices.len() - 1]]
@@ -421,11 +425,16 @@ const LOOP_CLOSING_ARM_IN_PEN_WIDTHS: f64 = 2.0;
 /// beyond it open. An end that comes in across the chain stays as it is: the bowl of a "P" or
 /// the end of a "6" meets its stem square (with no turn limit, letters broke on both splits).
 /// Measured on the benchmark: dev 332 → 333, seed 3 299 → 302, val 318 → 319, none lost.
+/// A free end farther off comes back onto the chain across a pen lift when it points at the
+/// closing point within a straight bridge's turn limit and lies within an ordinary bridge of it
+/// ([`BRIDGE_MAX_IN_TYPICAL_GAPS`] typical gaps of paper): a balloon whose gap is right beside
+/// the knot (seed 3 305 → 307, val 320 → 321, seed 1 unchanged, none lost).
 fn loop_and_tail(
     chain: Chain,
     vertices: &StrokeVertices,
     attachment: &HashMap<u32, Point>,
     stroke_width: f64,
+    typical_gap: f64,
 ) -> Vec<Chain> {
     let n = chain.vertices.len();
     if chain.closed || n < MIN_LOOP_SAMPLES {
@@ -467,9 +476,6 @@ fn loop_and_tail(
         else {
             continue;
         };
-        if distance > LOOP_CLOSING_REACH_IN_PEN_WIDTHS * stroke_width {
-            continue;
-        }
         // The end's way out, and the loop's way from the closing point back towards the end.
         let reach_from = |from: usize, steps: &mut dyn Iterator<Item = usize>| {
             let origin = at(from);
@@ -484,11 +490,17 @@ fn loop_and_tail(
         };
         let outward = -reach_from(0, &mut (1..k));
         let into_loop = reach_from(k, &mut (0..k).rev());
-        if outward == Vec2::ZERO
-            || into_loop == Vec2::ZERO
-            || angle(outward.normalize(), into_loop.normalize())
-                > MAX_STRAIGHT_TURN_DEGREES.to_radians()
-        {
+        let to_closing = at(k) - end;
+        let straight_on = |from: Vec2, to: Vec2| {
+            from != Vec2::ZERO
+                && to != Vec2::ZERO
+                && angle(from.normalize(), to.normalize()) <= MAX_STRAIGHT_TURN_DEGREES.to_radians()
+        };
+        let touching = distance <= LOOP_CLOSING_REACH_IN_PEN_WIDTHS * stroke_width;
+        let across_a_gap = !attachment.contains_key(&ordered[0])
+            && distance <= BRIDGE_MAX_IN_TYPICAL_GAPS * typical_gap + stroke_width
+            && straight_on(outward, to_closing);
+        if !(touching || across_a_gap) || !straight_on(outward, into_loop) {
             continue;
         }
         return vec![
@@ -673,6 +685,32 @@ mod tests {
         );
         let string = curves.iter().find(|c| !c.closed).expect("an open string");
         assert!(string.points.iter().all(|p| p.y >= 79.0), "{string:?}");
+    }
+
+    #[test]
+    fn a_loop_whose_end_stops_a_gap_short_of_its_knot_is_a_loop_and_a_tail() {
+        // A balloon (r 30) drawn in one stroke from 22° short of the knot round to the knot at
+        // its bottom, then down the string: the stroke's first end points at the knot across an
+        // 11-px gap, within an ordinary bridge of a 6-px typical gap. Cut there: the balloon
+        // closed, the string open.
+        let (cx, cy, r) = (50.0, 50.0, 30.0);
+        let mut points: Vec<(f64, f64)> = (0..=84)
+            .map(|k| {
+                let angle = (112.0 + 338.0 * k as f64 / 84.0f64).to_radians();
+                (cx + r * angle.cos(), cy + r * angle.sin())
+            })
+            .collect();
+        points.extend(line((50.0, 80.0), (62.0, 120.0)).into_iter().skip(1));
+        let vertices = StrokeVertices::new(&[open(&points)], 4.0);
+        let chain = Chain {
+            vertices: (0..vertices.positions.len() as u32).collect(),
+            closed: false,
+        };
+        let pieces = loop_and_tail(chain, &vertices, &HashMap::new(), 3.0, 6.0);
+        assert_eq!(pieces.len(), 2, "{pieces:?}");
+        assert!(pieces[0].closed && !pieces[1].closed, "{pieces:?}");
+        let knot = vertices.positions[*pieces[1].vertices.front().unwrap() as usize];
+        assert!(knot.distance(Point::new(50.0, 80.0)) < 2.0, "{knot:?}");
     }
 
     #[test]
