@@ -347,17 +347,23 @@ mod tests {
         (points, apex, mask)
     }
 
-    #[test]
-    fn a_rounded_acute_tip_gets_its_apex_back() {
-        let (points, apex, mask) = rounded_tip();
+    /// Restores the tips of the open curve through `points` (pen 3) and asserts that one of its
+    /// vertices lies within a pixel of `apex`.
+    fn assert_apex_restored(points: Vec<Point>, mask: &Bitmap, apex: Point) {
         let mut curves = vec![Polyline::new(points, false)];
-        restore_tips(&mut curves, &mask, 3.0);
+        restore_tips(&mut curves, mask, 3.0);
         let nearest = curves[0]
             .points
             .iter()
             .map(|p| p.distance(apex))
             .fold(f64::INFINITY, f64::min);
         assert!(nearest < 1.0, "{:?}", curves[0].points);
+    }
+
+    #[test]
+    fn a_rounded_acute_tip_gets_its_apex_back() {
+        let (points, apex, mask) = rounded_tip();
+        assert_apex_restored(points, &mask, apex);
     }
 
     #[test]
@@ -383,14 +389,7 @@ mod tests {
         .unwrap();
         // The arms bend inside the rounding: the turn measured falls well short of 120°.
         assert!((100.0..115.0).contains(&measured), "{measured}");
-        let mut curves = vec![Polyline::new(points, false)];
-        restore_tips(&mut curves, &mask, 3.0);
-        let nearest = curves[0]
-            .points
-            .iter()
-            .map(|p| p.distance(apex))
-            .fold(f64::INFINITY, f64::min);
-        assert!(nearest < 1.0, "{:?}", curves[0].points);
+        assert_apex_restored(points, &mask, apex);
     }
 
     #[test]
