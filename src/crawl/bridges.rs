@@ -11,7 +11,7 @@ use std::collections::{HashMap, HashSet};
 use kurbo::{Point, Vec2};
 
 use super::strokes::{point_key, PointKey, StrokeVertices};
-use super::through::{angle, through_candidates, ThroughCorner};
+use super::through::{angle, through_candidates, ThroughCandidate, ThroughCorner};
 use crate::geometry::polyline::{distance_to_segment, polyline_length};
 use crate::geometry::UnionFind;
 use crate::strokes::MIN_LOOP_SAMPLES;
@@ -962,22 +962,20 @@ fn bridge_candidates(
             });
         }
     }
-    candidates.extend(
-        through_candidates(vertices, ends, reach, spacing, stroke_width)
-            .into_iter()
-            .map(|c| Candidate {
-                cost: c.cost,
-                length: c.length,
-                a: c.end,
-                b: c.through.corner,
-                alongside: 0.0,
-                corner: None,
-                between_free_ends: false,
-                through: Some(c.through),
-            }),
-    );
-    drop_t_ends_across_through_corners(&mut candidates, vertices, ends, stroke_width);
-    let on_gaps = defer_ends_on_gaps(&mut candidates, ends, stroke_width);
+    let through = through_candidates(vertices, ends, reach, spacing, stroke_width);
+    let end_at: HashMap<u32, &BridgeableEnd> = ends.iter().rev().map(|e| (e.vertex, e)).collect();
+    drop_t_ends_across_through_corners(&mut candidates, &through, &end_at, vertices, stroke_width);
+    candidates.extend(through.into_iter().map(|c| Candidate {
+        cost: c.cost,
+        length: c.length,
+        a: c.end,
+        b: c.through.corner,
+        alongside: 0.0,
+        corner: None,
+        between_free_ends: false,
+        through: Some(c.through),
+    }));
+    let on_gaps = defer_ends_on_gaps(&mut candidates, &end_at, stroke_width);
     candidates.sort_by(|x, y| {
         x.cost
             .total_cmp(&y.cost)
@@ -996,38 +994,36 @@ fn bridge_candidates(
 /// "K" whose stem is broken just below the junction: the arm's end took the lower stem round a
 /// corner at the junction, and the leg went on into the upper stem). Measured on the benchmark,
 /// with the cut arm's T-end below: seed 3 one more drawing, seeds 1 and 2 unchanged.
+/// `candidates` holds no through-corner bridges yet; `through` are those of the same ends.
 fn drop_t_ends_across_through_corners(
     candidates: &mut Vec<Candidate>,
+    through: &[ThroughCandidate],
+    end_at: &HashMap<u32, &BridgeableEnd>,
     vertices: &StrokeVertices,
-    ends: &[BridgeableEnd],
     stroke_width: f64,
 ) {
+    // Only free ends go through corners ([`through_candidates`]).
     let mut through_corners: HashMap<u32, Vec<Point>> = HashMap::new();
-    for candidate in candidates.iter() {
-        if let Some(through) = candidate.through {
-            through_corners
-                .entry(candidate.a)
-                .or_default()
-                .push(vertices.positions[through.corner as usize]);
-        }
+    for candidate in through {
+        through_corners
+            .entry(candidate.end)
+            .or_default()
+            .push(vertices.positions[candidate.through.corner as usize]);
     }
     if through_corners.is_empty() {
         return;
     }
-    let end_at: HashMap<u32, &BridgeableEnd> = ends.iter().rev().map(|e| (e.vertex, e)).collect();
+    // A page of noise has millions of candidates: the ends with no corner to go through are
+    // passed over before any end is looked up.
+    let t_end_on_a_corner_of = |free: u32, other: u32| {
+        through_corners.get(&free).is_some_and(|corners| {
+            let t_end = end_at[&other];
+            t_end.attached && corners.iter().any(|c| c.distance(t_end.at) <= stroke_width)
+        })
+    };
     candidates.retain(|candidate| {
-        if candidate.through.is_some() {
-            return true;
-        }
-        let (a, b) = (end_at[&candidate.a], end_at[&candidate.b]);
-        let (t_end, free) = match (a.attached, b.attached) {
-            (true, false) => (a, b),
-            (false, true) => (b, a),
-            _ => return true,
-        };
-        !through_corners
-            .get(&free.vertex)
-            .is_some_and(|corners| corners.iter().any(|c| c.distance(t_end.at) <= stroke_width))
+        !t_end_on_a_corner_of(candidate.a, candidate.b)
+            && !t_end_on_a_corner_of(candidate.b, candidate.a)
     });
 }
 
@@ -1056,10 +1052,9 @@ const ON_GAP_MAX_ALONG_COSINE: f64 = 0.57;
 /// straight bridge is taken, the end is attached to the point of the bridge nearest to it.
 fn defer_ends_on_gaps(
     candidates: &mut [Candidate],
-    ends: &[BridgeableEnd],
+    end_at: &HashMap<u32, &BridgeableEnd>,
     stroke_width: f64,
 ) -> Vec<EndOnGap> {
-    let end_at: HashMap<u32, &BridgeableEnd> = ends.iter().rev().map(|e| (e.vertex, e)).collect();
     let mut of_vertex: HashMap<u32, Vec<usize>> = HashMap::new();
     for (index, candidate) in candidates.iter().enumerate() {
         of_vertex.entry(candidate.a).or_default().push(index);
