@@ -25,6 +25,7 @@ use crate::raster::decode::{
 };
 use crate::raster::density::image_dpi;
 use crate::raster::thin::thin;
+use crate::raster::valleys::open_valleys;
 use crate::strokes::{
     default_spacing, extract_strokes_and_bands, minimum_spacing, sample_strokes,
     simplification_tolerance, split_dots,
@@ -266,7 +267,10 @@ fn raster_stages(
         other => Cow::Owned(to_gray(other)),
     };
     watch.lap(report, "gray");
-    let binarized = binarize(&gray, &options.binarize);
+    let mut binarized = binarize(&gray, &options.binarize);
+    // Two strokes a pixel or two apart: thresholding fills their blurred gap with ink here and
+    // there, and the skeleton would join them by rungs. The gray image shows the gap.
+    open_valleys(&gray, &mut binarized.mask, options.binarize.invert);
     let (width, height) = (f64::from(gray.width()), f64::from(gray.height()));
     // Only --debug needs the gray image after thresholding; free it before the later stages.
     let gray = options.keep_stages.then(|| gray.into_owned());

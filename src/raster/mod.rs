@@ -11,6 +11,7 @@ pub mod density;
 mod limits;
 pub mod radius;
 pub mod thin;
+pub mod valleys;
 
 /// The tests' seeded generator (`tests/support/random.rs`), for the unit tests' random shapes and
 /// noise: one copy for the whole repository.
