@@ -2,7 +2,7 @@
 //! order, for benchmarks, tests and front ends that run or time a stage on its own. The crate
 //! root has the entry points that run them together.
 //!
-//! Images: [`decode`] → [`binarize`] → [`clean`] → [`thin`] (all on a [`bitmap::Bitmap`]) →
+//! Images: [`decode`] → [`binarize`] → [`valleys`] → [`clean`] → [`thin`] (all on a [`bitmap::Bitmap`]) →
 //! [`strokes`] (the skeleton's pen strokes, sampled) → [`crawl`] (curves) → [`fit`] (paths) →
 //! [`svg`] or [`dxf`] (paths [`flatten`]ed), sized by [`units`] (with the file's [`density`]);
 //! [`render`] draws SVG back into pixels and [`debug`] pictures every stage.
@@ -12,7 +12,7 @@
 //! [`geometry`] holds what several stages share.
 
 pub use crate::output::{debug, dxf, fit, flatten, render, svg, units};
-pub use crate::raster::{binarize, bitmap, clean, decode, density, radius, thin};
+pub use crate::raster::{binarize, bitmap, clean, decode, density, radius, thin, valleys};
 
 pub mod strokes {
     //! Skeleton → pen strokes → samples: the skeleton traced as a graph, pruned, its junctions

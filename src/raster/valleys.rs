@@ -34,10 +34,10 @@ const VALLEY_REACH_PX: isize = 2;
 const VALLEY_MIN_DEPTH: f64 = 0.25;
 
 /// Sets to paper every ink pixel of `mask` (thresholded from `gray`, whose ink is dark, or light
-/// with `invert`) that lies in a valley: along a row, a column or a diagonal, a pixel within
-/// [`VALLEY_REACH_PX`] on each side is darker than it by [`VALLEY_MIN_DEPTH`] of the contrast
-/// between the mask's ink and its paper; each 8-connected piece of such pixels is opened where
-/// that parts ink (or joins or makes a hole). Every decision reads the gray image and the mask
+/// with `invert`) that lies in a valley: along a row, a column or a diagonal, a pixel within 2 px
+/// on each side is darker than it by a quarter of the contrast between the mask's ink and its
+/// paper; each 8-connected piece of such pixels is opened where that parts ink (or joins or makes
+/// a hole). Every decision reads the gray image and the mask
 /// as thresholded (two pieces are never 8-adjacent, so opening one changes nothing another
 /// sees): the result does not depend on the order of the pixels. Returns how many pixels were
 /// opened.
