@@ -783,6 +783,23 @@ mod tests {
     }
 
     #[test]
+    fn a_thick_pens_small_circle_closes_across_its_widest_gap() {
+        // A circle 45 px across in radius drawn with a 7 px pen in five strokes: four pen
+        // lifts of 27° (21 px between the skeleton's ends, 14 px of paper) and the gap where
+        // the pen came back, 58° (44 px, 15.5 % of the loop, but 37 px of paper, 13 %). It is
+        // the loop's clear closing gap, 2.4 typical gaps wide: the share counts its paper.
+        let mut strokes = Vec::new();
+        let mut angle = 0.0;
+        for _ in 0..5 {
+            strokes.push(arc((100.0, 100.0), 45.0, angle, angle + 38.8, 3.5));
+            angle += 38.8 + 27.0;
+        }
+        let curves = connect(&strokes, Method::Strokes, 3.5, 7.0);
+        assert_eq!(curves.len(), 1, "{curves:?}");
+        assert!(curves[0].closed, "the circle stays open: {curves:?}");
+    }
+
+    #[test]
     fn an_open_mouth_inside_a_face_stays_open_and_apart() {
         let mut strokes = skip_stroke_circle((100.0, 100.0), 80.0, 30.0, 6.0);
         // A mouth of two strokes with a small gap, its corners 30 px from the outline's gaps.
