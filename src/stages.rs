@@ -2,10 +2,10 @@
 //! order, for benchmarks, tests and front ends that run or time a stage on its own. The crate
 //! root has the entry points that run them together.
 //!
-//! Images: [`decode`] → [`binarize`] → [`valleys`] → [`clean`] → [`thin`] (all on a [`bitmap::Bitmap`]) →
-//! [`strokes`] (the skeleton's pen strokes, sampled) → [`crawl`] (curves) → [`fit`] (paths) →
-//! [`svg`] or [`dxf`] (paths [`flatten`]ed), sized by [`units`] (with the file's [`density`]);
-//! [`render`] draws SVG back into pixels and [`debug`] pictures every stage.
+//! Images: [`decode`] → [`binarize`] → [`valleys`] → [`clean`] → [`thin`] (all on a
+//! [`bitmap::Bitmap`]) → [`strokes`] (the skeleton's pen strokes, sampled) → [`crawl`] (curves) →
+//! [`fit`] (paths) → [`svg`] or [`dxf`] (paths [`flatten`]ed), sized by [`units`] (with the
+//! file's [`density`]); [`render`] draws SVG back into pixels and [`debug`] pictures every stage.
 //!
 //! Point sets: [`points`] reads point files and writes reconstructions; [`crawl`] reconstructs.
 //!

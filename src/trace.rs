@@ -268,15 +268,16 @@ fn raster_stages(
     };
     watch.lap(report, "gray");
     let mut binarized = binarize(&gray, &options.binarize);
+    watch.lap(report, "binarize");
     // Two strokes a pixel or two apart: thresholding fills their blurred gap with ink here and
     // there, and the skeleton would join them by rungs. The gray image shows the gap.
     open_valleys(&gray, &mut binarized.mask, options.binarize.invert);
+    watch.lap(report, "valleys");
     let (width, height) = (f64::from(gray.width()), f64::from(gray.height()));
     // Only --debug needs the gray image after thresholding; free it before the later stages.
     let gray = options.keep_stages.then(|| gray.into_owned());
     report.threshold = Some(binarized.method_used);
     let mut mask = binarized.mask;
-    watch.lap(report, "binarize");
     let stroke_width = estimate_stroke_width(&mask);
     if stroke_width <= 0.0 {
         return Err(TraceError::NoInk);

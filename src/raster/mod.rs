@@ -1,7 +1,8 @@
 //! The raster stages of the pipeline (`docs/design.md`, "The pipeline"): image bytes → gray
 //! ([`decode`]) → ink mask ([`binarize`]) → paper between strokes that nearly touch ([`valleys`])
-//! → cleaned mask and pen width ([`clean`]) → 1-px skeleton ([`thin`]), all on the one-byte-a-pixel [`bitmap::Bitmap`]; and the pixel density the image
-//! file records ([`density`]), for the output's physical size.
+//! → cleaned mask and pen width ([`clean`]) → 1-px skeleton ([`thin`]), all on the
+//! one-byte-a-pixel [`bitmap::Bitmap`]; and the pixel density the image file records
+//! ([`density`]), for the output's physical size.
 
 pub mod binarize;
 pub mod bitmap;

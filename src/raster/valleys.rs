@@ -37,10 +37,9 @@ const VALLEY_MIN_DEPTH: f64 = 0.25;
 /// with `invert`) that lies in a valley: along a row, a column or a diagonal, a pixel within 2 px
 /// on each side is darker than it by a quarter of the contrast between the mask's ink and its
 /// paper; each 8-connected piece of such pixels is opened where that parts ink (or joins or makes
-/// a hole). Every decision reads the gray image and the mask
-/// as thresholded (two pieces are never 8-adjacent, so opening one changes nothing another
-/// sees): the result does not depend on the order of the pixels. Returns how many pixels were
-/// opened.
+/// a hole). Every decision reads the gray image and the mask as thresholded (two pieces are never
+/// 8-adjacent, so opening one changes nothing another sees): the result does not depend on the
+/// order of the pixels. Returns how many pixels were opened.
 pub fn open_valleys(gray: &GrayImage, mask: &mut Bitmap, invert: bool) -> usize {
     let (width, height) = (mask.width(), mask.height());
     if width == 0 || height == 0 {
@@ -199,18 +198,16 @@ fn euler_change(mask: &Bitmap, piece: &[usize]) -> i32 {
 /// gray levels: [`VALLEY_MIN_DEPTH`] of the difference between the median level of the paper
 /// and that of the ink. `None` when the mask is all ink or all paper.
 fn valley_depth(raw: &[u8], mask: &Bitmap, invert: bool) -> Option<i32> {
-    // Counted by the raw level, the mask's byte (0 or 1) choosing the histogram; on a large
-    // page every k-th pixel (a million or so), which moves a median by well under a level.
+    // On a large page every k-th pixel (a million or so), which moves a median by well under a
+    // level; the mask's byte (0 or 1) chooses the histogram.
     let stride = (raw.len() / MEDIAN_SAMPLES).max(1);
     let mut by_mask = [[0u64; 256]; 2];
     for (&bit, &value) in mask.as_bytes().iter().zip(raw).step_by(stride) {
-        by_mask[usize::from(bit & 1)][usize::from(value)] += 1;
+        let oriented = if invert { 255 - value } else { value };
+        by_mask[usize::from(bit & 1)][usize::from(oriented)] += 1;
     }
-    let oriented = |histogram: &[u64; 256]| -> [u64; 256] {
-        std::array::from_fn(|level| histogram[if invert { 255 - level } else { level }])
-    };
-    let (paper, ink) = (oriented(&by_mask[0]), oriented(&by_mask[1]));
-    let contrast = median(&paper)? - median(&ink)?;
+    let [paper, ink] = &by_mask;
+    let contrast = median(paper)? - median(ink)?;
     Some(((f64::from(contrast) * VALLEY_MIN_DEPTH).ceil() as i32).max(1))
 }
 
