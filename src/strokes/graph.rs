@@ -1,8 +1,6 @@
 //! The skeleton as a graph: branches of skeleton pixels between nodes (end points and
 //! junctions), traced from a 1-px skeleton in raster order.
 
-use std::collections::HashMap;
-
 use kurbo::Point;
 
 use crate::raster::bitmap::{Bitmap, NEIGHBOUR_OFFSETS};
@@ -47,17 +45,80 @@ pub(super) struct Branch {
 /// The label of pixels that lie on a branch (node pixels are labelled with their node).
 const PATH_PIXEL: usize = usize::MAX;
 
-/// Labels of the skeleton pixels traced so far, by pixel index (`y * width + x`): a node number
-/// or [`PATH_PIXEL`].
-type Labels = HashMap<usize, usize>;
+/// Labels of the skeleton pixels traced so far: a node number or [`PATH_PIXEL`]. The skeleton's
+/// pixels are listed row by row (each row's in order of x), so that a pixel's label is found by
+/// a short search in its row: a skeleton is a few pixels per row, and a label per page pixel
+/// would cost as much memory as the page.
+struct Labels {
+    /// Where each row's pixels start in `xs` (one more entry than rows).
+    row_start: Vec<usize>,
+    /// The x of every skeleton pixel, row after row.
+    xs: Vec<u32>,
+    /// The label of each pixel of `xs`; `None` until it is traced.
+    labels: Vec<Option<usize>>,
+}
+
+impl Labels {
+    /// No pixel of `skeleton` labelled yet.
+    fn new(skeleton: &Bitmap) -> Self {
+        let width = skeleton.width();
+        let bytes = skeleton.as_bytes();
+        let mut row_start = Vec::with_capacity(skeleton.height() + 1);
+        let mut xs = Vec::new();
+        for row in bytes.chunks_exact(width.max(1)).take(skeleton.height()) {
+            row_start.push(xs.len());
+            xs.extend(
+                row.iter()
+                    .enumerate()
+                    .filter(|(_, &b)| b != 0)
+                    .map(|(x, _)| x as u32),
+            );
+        }
+        row_start.push(xs.len());
+        let labels = vec![None; xs.len()];
+        Self {
+            row_start,
+            xs,
+            labels,
+        }
+    }
+
+    /// The position of skeleton pixel `(x, y)` in `xs`.
+    fn slot(&self, (x, y): (usize, usize)) -> Option<usize> {
+        let (from, to) = (*self.row_start.get(y)?, self.row_start[y + 1]);
+        self.xs[from..to]
+            .binary_search(&(x as u32))
+            .ok()
+            .map(|k| from + k)
+    }
+
+    fn get(&self, pixel: (usize, usize)) -> Option<usize> {
+        self.slot(pixel).and_then(|k| self.labels[k])
+    }
+
+    fn contains(&self, pixel: (usize, usize)) -> bool {
+        self.get(pixel).is_some()
+    }
+
+    /// Labels the skeleton pixel `pixel` (a pixel off the skeleton has no label to set).
+    fn insert(&mut self, pixel: (usize, usize), label: usize) {
+        if let Some(k) = self.slot(pixel) {
+            self.labels[k] = Some(label);
+        }
+    }
+
+    /// The skeleton's pixels in raster order.
+    fn pixels(&self) -> impl Iterator<Item = (usize, usize)> + '_ {
+        (0..self.row_start.len() - 1).flat_map(move |y| {
+            self.xs[self.row_start[y]..self.row_start[y + 1]]
+                .iter()
+                .map(move |&x| (x as usize, y))
+        })
+    }
+}
 
 fn centre(x: usize, y: usize) -> Point {
     Point::new(x as f64 + 0.5, y as f64 + 0.5)
-}
-
-/// The index of a pixel in the labels.
-fn pixel_index(skeleton: &Bitmap, (x, y): (usize, usize)) -> usize {
-    y * skeleton.width() + x
 }
 
 /// The ink pixels among the 8 neighbours of `(x, y)`, in [`NEIGHBOUR_OFFSETS`] order.
@@ -90,7 +151,7 @@ fn nth_from_node(points: &[Point], at_start: bool, k: usize) -> Point {
 impl SkeletonGraph {
     /// The graph of `skeleton`: its nodes, the branches between them, and the loops with no node.
     pub(super) fn trace(skeleton: &Bitmap) -> Self {
-        let mut label = Labels::new();
+        let mut label = Labels::new(skeleton);
         let mut graph = SkeletonGraph::default();
         let members_of_node = graph.find_nodes(skeleton, &mut label);
         // Walk every branch leaving each node; a branch walked from its other end already has
@@ -99,7 +160,7 @@ impl SkeletonGraph {
             for &pixel in members {
                 let starts: Vec<(usize, usize)> = neighbours_of(skeleton, pixel).collect();
                 for first in starts {
-                    if !label.contains_key(&pixel_index(skeleton, first)) {
+                    if !label.contains(first) {
                         graph.walk_branch(skeleton, &mut label, node, pixel, first);
                     }
                 }
@@ -113,46 +174,36 @@ impl SkeletonGraph {
     /// two or three junction pixels side by side), at the cluster's centroid, in raster order of
     /// the clusters' first pixels. Returns each node's pixels.
     fn find_nodes(&mut self, skeleton: &Bitmap, label: &mut Labels) -> Vec<Vec<(usize, usize)>> {
-        let (width, height) = (skeleton.width(), skeleton.height());
-        let index = |pixel: (usize, usize)| pixel_index(skeleton, pixel);
         let mut members_of_node: Vec<Vec<(usize, usize)>> = Vec::new();
-        let bytes = skeleton.as_bytes();
-        for y in 0..height {
-            let row = &bytes[y * width..(y + 1) * width];
-            for x in row
-                .iter()
-                .enumerate()
-                .filter(|(_, &b)| b != 0)
-                .map(|(x, _)| x)
-            {
-                if !is_node_pixel(skeleton, (x, y)) || label.contains_key(&index((x, y))) {
-                    continue;
-                }
-                let node = self.nodes.len();
-                let mut stack = vec![(x, y)];
-                let mut members = Vec::new();
-                label.insert(index((x, y)), node);
-                while let Some(pixel) = stack.pop() {
-                    members.push(pixel);
-                    for next in neighbours_of(skeleton, pixel) {
-                        if is_node_pixel(skeleton, next) && !label.contains_key(&index(next)) {
-                            label.insert(index(next), node);
-                            stack.push(next);
-                        }
+        let pixels: Vec<(usize, usize)> = label.pixels().collect();
+        for (x, y) in pixels {
+            if !is_node_pixel(skeleton, (x, y)) || label.contains((x, y)) {
+                continue;
+            }
+            let node = self.nodes.len();
+            let mut stack = vec![(x, y)];
+            let mut members = Vec::new();
+            label.insert((x, y), node);
+            while let Some(pixel) = stack.pop() {
+                members.push(pixel);
+                for next in neighbours_of(skeleton, pixel) {
+                    if is_node_pixel(skeleton, next) && !label.contains(next) {
+                        label.insert(next, node);
+                        stack.push(next);
                     }
                 }
-                members.sort_unstable_by_key(|&(mx, my)| (my, mx));
-                let count = members.len() as f64;
-                let (sum_x, sum_y) = members.iter().fold((0.0, 0.0), |(sx, sy), &(mx, my)| {
-                    (sx + mx as f64 + 0.5, sy + my as f64 + 0.5)
-                });
-                self.nodes.push(Node {
-                    position: Point::new(sum_x / count, sum_y / count),
-                    ends: Vec::new(),
-                    pruned: false,
-                });
-                members_of_node.push(members);
             }
+            members.sort_unstable_by_key(|&(mx, my)| (my, mx));
+            let count = members.len() as f64;
+            let (sum_x, sum_y) = members.iter().fold((0.0, 0.0), |(sx, sy), &(mx, my)| {
+                (sx + mx as f64 + 0.5, sy + my as f64 + 0.5)
+            });
+            self.nodes.push(Node {
+                position: Point::new(sum_x / count, sum_y / count),
+                ends: Vec::new(),
+                pruned: false,
+            });
+            members_of_node.push(members);
         }
         members_of_node
     }
@@ -160,31 +211,27 @@ impl SkeletonGraph {
     /// What is left unlabelled after the branches are walked are loops with no node on them:
     /// each becomes a branch without nodes.
     fn trace_loops_without_nodes(&mut self, skeleton: &Bitmap, label: &mut Labels) {
-        let index = |pixel: (usize, usize)| pixel_index(skeleton, pixel);
-        for y in 0..skeleton.height() {
-            for x in 0..skeleton.width() {
-                if !skeleton.get(x, y) || label.contains_key(&index((x, y))) {
-                    continue;
-                }
-                let mut points = vec![centre(x, y)];
-                label.insert(index((x, y)), PATH_PIXEL);
-                let mut current = (x, y);
-                while let Some(next) =
-                    neighbours_of(skeleton, current).find(|&p| !label.contains_key(&index(p)))
-                {
-                    label.insert(index(next), PATH_PIXEL);
-                    points.push(centre(next.0, next.1));
-                    current = next;
-                }
-                self.branches.push(Branch {
-                    points,
-                    nodes: None,
-                    removed: false,
-                    strand_of: None,
-                    side: 0.0,
-                    wide: false,
-                });
+        let pixels: Vec<(usize, usize)> = label.pixels().collect();
+        for (x, y) in pixels {
+            if label.contains((x, y)) {
+                continue;
             }
+            let mut points = vec![centre(x, y)];
+            label.insert((x, y), PATH_PIXEL);
+            let mut current = (x, y);
+            while let Some(next) = neighbours_of(skeleton, current).find(|&p| !label.contains(p)) {
+                label.insert(next, PATH_PIXEL);
+                points.push(centre(next.0, next.1));
+                current = next;
+            }
+            self.branches.push(Branch {
+                points,
+                nodes: None,
+                removed: false,
+                strand_of: None,
+                side: 0.0,
+                wide: false,
+            });
         }
     }
 
@@ -198,10 +245,8 @@ impl SkeletonGraph {
         from: (usize, usize),
         first: (usize, usize),
     ) {
-        let width = skeleton.width();
-        let index = |(x, y): (usize, usize)| y * width + x;
         let mut points = vec![self.nodes[start_node].position, centre(first.0, first.1)];
-        label.insert(index(first), PATH_PIXEL);
+        label.insert(first, PATH_PIXEL);
         let (mut previous, mut current) = (from, first);
         let end_node = loop {
             let mut next_path = None;
@@ -212,18 +257,18 @@ impl SkeletonGraph {
                     continue;
                 }
                 let p = (nx as usize, ny as usize);
-                match label.get(&index(p)) {
+                match label.get(p) {
                     None => next_path = next_path.or(Some(p)),
-                    Some(&PATH_PIXEL) => {}
+                    Some(PATH_PIXEL) => {}
                     // Touching the cluster just left, on the first step, is not an arrival.
-                    Some(&node) if node == start_node && points.len() == 2 => {}
-                    Some(&node) => next_node = next_node.or(Some(node)),
+                    Some(node) if node == start_node && points.len() == 2 => {}
+                    Some(node) => next_node = next_node.or(Some(node)),
                 }
             }
             match (next_node, next_path) {
                 (Some(node), _) => break Some(node),
                 (None, Some(p)) => {
-                    label.insert(index(p), PATH_PIXEL);
+                    label.insert(p, PATH_PIXEL);
                     points.push(centre(p.0, p.1));
                     previous = current;
                     current = p;
@@ -272,11 +317,9 @@ impl SkeletonGraph {
         pixel: (usize, usize),
         node: usize,
     ) -> bool {
-        let width = skeleton.width();
         NEIGHBOUR_OFFSETS.iter().any(|&(dx, dy)| {
             let (nx, ny) = (pixel.0 as isize + dx, pixel.1 as isize + dy);
-            skeleton.get_signed(nx, ny)
-                && label.get(&(ny as usize * width + nx as usize)) == Some(&node)
+            skeleton.get_signed(nx, ny) && label.get((nx as usize, ny as usize)) == Some(node)
         })
     }
 
