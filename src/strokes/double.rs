@@ -674,6 +674,24 @@ mod tests {
         assert!((34..=46).contains(&along), "{along} points: out and back");
     }
 
+    /// The paths traced, with default options, from a 150 × 80 page inked where `mask` is.
+    fn traced_paths(mask: &Bitmap) -> Vec<crate::output::fit::CurvePath> {
+        let image = image::GrayImage::from_fn(150, 80, |x, y| {
+            image::Luma([if mask.get(x as usize, y as usize) {
+                0
+            } else {
+                255
+            }])
+        });
+        crate::trace(
+            &image::DynamicImage::ImageLuma8(image),
+            &crate::TraceOptions::default(),
+        )
+        .expect("traces")
+        .drawing
+        .paths
+    }
+
     #[test]
     fn the_traced_spike_closes_at_its_tip() {
         let mut mask = square_outline(150);
@@ -685,19 +703,7 @@ mod tests {
                 mask.set(x, y, false);
             }
         }
-        let image = image::GrayImage::from_fn(150, 80, |x, y| {
-            image::Luma([if mask.get(x as usize, y as usize) {
-                0
-            } else {
-                255
-            }])
-        });
-        let traced = crate::trace(
-            &image::DynamicImage::ImageLuma8(image),
-            &crate::TraceOptions::default(),
-        )
-        .expect("traces");
-        let paths = &traced.drawing.paths;
+        let paths = &traced_paths(&mask);
         assert_eq!(paths.len(), 1, "{paths:?}");
         assert!(paths[0].closed, "{paths:?}");
     }
@@ -719,19 +725,7 @@ mod tests {
                 }
             }
         }
-        let image = image::GrayImage::from_fn(150, 80, |x, y| {
-            image::Luma([if mask.get(x as usize, y as usize) {
-                0
-            } else {
-                255
-            }])
-        });
-        let traced = crate::trace(
-            &image::DynamicImage::ImageLuma8(image),
-            &crate::TraceOptions::default(),
-        )
-        .expect("traces");
-        let paths = &traced.drawing.paths;
+        let paths = &traced_paths(&mask);
         assert_eq!(paths.len(), 1, "{paths:?}");
         assert!(paths[0].closed, "{paths:?}");
         let tip = kurbo::Shape::bounding_box(&paths[0].path).max_x();
