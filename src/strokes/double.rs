@@ -74,8 +74,13 @@ impl BandJudge {
     /// Whether ink of these widths along a branch is a band: its widest stretch clearly wider
     /// than one stroke ([`DOUBLE_WIDTH_RATIO`], [`DOUBLE_MIN_EXCESS_PX`]).
     fn is_band(&self, widths: &[Option<f64>]) -> bool {
-        let widest = widest_stretch(widths, self.stretch);
-        widest >= DOUBLE_WIDTH_RATIO * self.typical && widest >= self.typical + DOUBLE_MIN_EXCESS_PX
+        self.is_wide(widest_stretch(widths, self.stretch))
+    }
+
+    /// Whether a stretch's mean width is clearly wider than one stroke ([`DOUBLE_WIDTH_RATIO`],
+    /// [`DOUBLE_MIN_EXCESS_PX`]).
+    fn is_wide(&self, mean: f64) -> bool {
+        mean >= DOUBLE_WIDTH_RATIO * self.typical && mean >= self.typical + DOUBLE_MIN_EXCESS_PX
     }
 }
 
@@ -195,7 +200,7 @@ enum BandEnd {
 }
 
 /// Where a dash with these widths is a band over one end and one stroke over the rest: the
-/// longest run of stretches wider than one stroke ([`BandJudge::is_band`]'s measure) is at least
+/// longest run of stretches wider than one stroke ([`BandJudge::is_wide`]) is at least
 /// [`BAND_END_MIN_RUN_IN_STRETCHES`] long, the end beyond it (a spike's tip, where its sides
 /// close in) no longer than [`BAND_END_MAX_TIP_SHARE`] of the run, and the stroke on the other
 /// side at least [`BAND_END_MIN_STROKE_IN_STRETCHES`] long. The nearer end wins when both would
@@ -212,8 +217,7 @@ fn band_end_cut(widths: &[Option<f64>], judge: &BandJudge) -> Option<BandEnd> {
         if 2 * run.len() < stretch {
             return false;
         }
-        let mean = run.iter().sum::<f64>() / run.len() as f64;
-        mean >= DOUBLE_WIDTH_RATIO * judge.typical && mean >= judge.typical + DOUBLE_MIN_EXCESS_PX
+        judge.is_wide(run.iter().sum::<f64>() / run.len() as f64)
     };
     // The longest run of wide windows (a corner's cross-section is wide for a pen width or two,
     // as it crosses the other arm; a band's for many), as window starts from..to.

@@ -107,13 +107,18 @@ impl Labels {
         }
     }
 
-    /// The skeleton's pixels in raster order.
-    fn pixels(&self) -> impl Iterator<Item = (usize, usize)> + '_ {
-        (0..self.row_start.len() - 1).flat_map(move |y| {
-            self.xs[self.row_start[y]..self.row_start[y + 1]]
-                .iter()
-                .map(move |&x| (x as usize, y))
-        })
+    /// The number of rows.
+    fn rows(&self) -> usize {
+        self.row_start.len() - 1
+    }
+
+    /// The x of every skeleton pixel of row `y`, in order; a copy of the row's few entries, so
+    /// that the caller may label pixels while it walks them.
+    fn row(&self, y: usize) -> Vec<usize> {
+        self.xs[self.row_start[y]..self.row_start[y + 1]]
+            .iter()
+            .map(|&x| x as usize)
+            .collect()
     }
 }
 
@@ -175,35 +180,36 @@ impl SkeletonGraph {
     /// the clusters' first pixels. Returns each node's pixels.
     fn find_nodes(&mut self, skeleton: &Bitmap, label: &mut Labels) -> Vec<Vec<(usize, usize)>> {
         let mut members_of_node: Vec<Vec<(usize, usize)>> = Vec::new();
-        let pixels: Vec<(usize, usize)> = label.pixels().collect();
-        for (x, y) in pixels {
-            if !is_node_pixel(skeleton, (x, y)) || label.contains((x, y)) {
-                continue;
-            }
-            let node = self.nodes.len();
-            let mut stack = vec![(x, y)];
-            let mut members = Vec::new();
-            label.insert((x, y), node);
-            while let Some(pixel) = stack.pop() {
-                members.push(pixel);
-                for next in neighbours_of(skeleton, pixel) {
-                    if is_node_pixel(skeleton, next) && !label.contains(next) {
-                        label.insert(next, node);
-                        stack.push(next);
+        for y in 0..label.rows() {
+            for x in label.row(y) {
+                if !is_node_pixel(skeleton, (x, y)) || label.contains((x, y)) {
+                    continue;
+                }
+                let node = self.nodes.len();
+                let mut stack = vec![(x, y)];
+                let mut members = Vec::new();
+                label.insert((x, y), node);
+                while let Some(pixel) = stack.pop() {
+                    members.push(pixel);
+                    for next in neighbours_of(skeleton, pixel) {
+                        if is_node_pixel(skeleton, next) && !label.contains(next) {
+                            label.insert(next, node);
+                            stack.push(next);
+                        }
                     }
                 }
+                members.sort_unstable_by_key(|&(mx, my)| (my, mx));
+                let count = members.len() as f64;
+                let (sum_x, sum_y) = members.iter().fold((0.0, 0.0), |(sx, sy), &(mx, my)| {
+                    (sx + mx as f64 + 0.5, sy + my as f64 + 0.5)
+                });
+                self.nodes.push(Node {
+                    position: Point::new(sum_x / count, sum_y / count),
+                    ends: Vec::new(),
+                    pruned: false,
+                });
+                members_of_node.push(members);
             }
-            members.sort_unstable_by_key(|&(mx, my)| (my, mx));
-            let count = members.len() as f64;
-            let (sum_x, sum_y) = members.iter().fold((0.0, 0.0), |(sx, sy), &(mx, my)| {
-                (sx + mx as f64 + 0.5, sy + my as f64 + 0.5)
-            });
-            self.nodes.push(Node {
-                position: Point::new(sum_x / count, sum_y / count),
-                ends: Vec::new(),
-                pruned: false,
-            });
-            members_of_node.push(members);
         }
         members_of_node
     }
@@ -211,27 +217,30 @@ impl SkeletonGraph {
     /// What is left unlabelled after the branches are walked are loops with no node on them:
     /// each becomes a branch without nodes.
     fn trace_loops_without_nodes(&mut self, skeleton: &Bitmap, label: &mut Labels) {
-        let pixels: Vec<(usize, usize)> = label.pixels().collect();
-        for (x, y) in pixels {
-            if label.contains((x, y)) {
-                continue;
+        for y in 0..label.rows() {
+            for x in label.row(y) {
+                if label.contains((x, y)) {
+                    continue;
+                }
+                let mut points = vec![centre(x, y)];
+                label.insert((x, y), PATH_PIXEL);
+                let mut current = (x, y);
+                while let Some(next) =
+                    neighbours_of(skeleton, current).find(|&p| !label.contains(p))
+                {
+                    label.insert(next, PATH_PIXEL);
+                    points.push(centre(next.0, next.1));
+                    current = next;
+                }
+                self.branches.push(Branch {
+                    points,
+                    nodes: None,
+                    removed: false,
+                    strand_of: None,
+                    side: 0.0,
+                    wide: false,
+                });
             }
-            let mut points = vec![centre(x, y)];
-            label.insert((x, y), PATH_PIXEL);
-            let mut current = (x, y);
-            while let Some(next) = neighbours_of(skeleton, current).find(|&p| !label.contains(p)) {
-                label.insert(next, PATH_PIXEL);
-                points.push(centre(next.0, next.1));
-                current = next;
-            }
-            self.branches.push(Branch {
-                points,
-                nodes: None,
-                removed: false,
-                strand_of: None,
-                side: 0.0,
-                wide: false,
-            });
         }
     }
 
