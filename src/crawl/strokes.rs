@@ -1405,6 +1405,43 @@ mod tests {
     }
 
     #[test]
+    fn a_cloud_whose_lobe_is_broken_just_after_its_notch_turns_back_at_the_notch() {
+        // A cloud's notch on a 4-px pen: the left lobe comes over its top to a corner at
+        // (0, -16.8) and down into the notch, curling at its end; the right lobe's stroke starts
+        // up its side, after a gap, its end pointing down and left (about 55° from the left
+        // lobe's end) along a line that runs through the left lobe's corner into the lobe's top.
+        // The outline turns back at the notch: one closed curve through it, not the left lobe's
+        // top taken through the corner and its last stretch left as a path of its own.
+        let polyline = |corners: &[(f64, f64)]| -> Vec<(f64, f64)> {
+            let mut points = line(corners[0], corners[1]);
+            for pair in corners[1..].windows(2) {
+                points.extend(&line(pair[0], pair[1])[1..]);
+            }
+            points
+        };
+        let left = polyline(&[
+            (-17.0, 24.0),
+            (-24.0, 24.0),
+            (-24.0, 0.0),
+            (-12.0, -15.0),
+            (0.0, -16.8),
+            (6.0, -9.0),
+            (4.5, 2.0),
+        ]);
+        let right = polyline(&[
+            (13.0, -24.3),
+            (27.0, -31.0),
+            (42.0, -21.0),
+            (45.0, 0.0),
+            (45.0, 24.0),
+            (-5.0, 24.0),
+        ]);
+        let curves = connect(&[open(&left), open(&right)], Method::Strokes, 4.0, 4.0);
+        assert_eq!(curves.len(), 1, "{curves:?}");
+        assert!(curves[0].closed, "{curves:?}");
+    }
+
+    #[test]
     fn a_k_whose_stem_is_broken_where_its_arms_meet_keeps_arm_and_leg_together() {
         // A "K" on a 2-px pen: the stem's upper half stops 8 px above where the arm meets it,
         // the arm runs on into the stem's lower half (one stroke, a corner), and the leg starts
