@@ -19,6 +19,21 @@ impl Bitmap {
         }
     }
 
+    /// A bitmap of `pixels`, row by row (0 background, 1 ink). Panics unless there are
+    /// `width * height` of them.
+    pub(crate) fn from_pixels(width: usize, height: usize, pixels: Vec<u8>) -> Self {
+        assert_eq!(
+            pixels.len(),
+            width * height,
+            "a bitmap's pixels fill its rows"
+        );
+        Self {
+            width,
+            height,
+            pixels,
+        }
+    }
+
     /// Parses a grid literal: one row a line, `#` for ink, `.` for background; blank lines and
     /// surrounding white space are ignored. Panics on ragged rows (it is for tests and fixtures).
     pub fn from_grid(grid: &str) -> Self {
