@@ -887,6 +887,7 @@ fn bridge_candidates(
     stroke_width: f64,
 ) -> (Vec<Candidate>, Vec<EndOnGap>) {
     let mut candidates: Vec<Candidate> = Vec::new();
+    // The pairs of ends offered a cusp, both ways round.
     let mut cusps: HashSet<(u32, u32)> = HashSet::new();
     let ran_into = strokes_ran_into(vertices, ends);
     for (a, b) in ends_within(ends, reach) {
@@ -944,7 +945,7 @@ fn bridge_candidates(
             free_ends_ways(&a, &b).is_some_and(|(ua, ub)| ua.dot(ub) > SAME_WAY_COSINE);
         for mut shape in [shape, turn_back, step].into_iter().flatten() {
             if shape.cusp {
-                cusps.insert((a.vertex.min(b.vertex), a.vertex.max(b.vertex)));
+                cusps.extend([(a.vertex, b.vertex), (b.vertex, a.vertex)]);
             }
             if point_alike && !shape.cusp {
                 shape.cost += SAME_WAY_CORNER_COST_OFFSET;
@@ -975,7 +976,7 @@ fn bridge_candidates(
     let mut through = through_candidates(vertices, ends, reach, spacing, stroke_width);
     through.retain(|candidate| {
         let end = cut_arm_end(vertices, &candidate.through);
-        !end.is_some_and(|f| cusps.contains(&(candidate.end.min(f), candidate.end.max(f))))
+        !end.is_some_and(|partner| cusps.contains(&(candidate.end, partner)))
     });
     let end_at: HashMap<u32, &BridgeableEnd> = ends.iter().rev().map(|e| (e.vertex, e)).collect();
     drop_t_ends_across_through_corners(&mut candidates, &through, &end_at, vertices, stroke_width);
@@ -1675,20 +1676,21 @@ fn cusp_shape(
         return None;
     }
     // Only two lobes' ends may point apart by more than the other shapes allow.
-    let spread = ua.dot(ub) < SAME_WAY_COSINE;
+    let same_way = ua.dot(ub) >= SAME_WAY_COSINE;
     let separation = a.at.distance(b.at);
     // Compared at the same distance back along both strokes, as far as the shorter one reaches.
     let (common, behind) = apart_behind(vertices, a, b, stroke_width);
     let band_width = BAND_TIP_MAX_SEPARATION_IN_PEN_WIDTHS * stroke_width;
-    let band_tip = separation <= band_width && behind <= band_width && common >= stroke_width;
+    let band_tip =
+        same_way && separation <= band_width && behind <= band_width && common >= stroke_width;
     let cusp = a.stroke != b.stroke
         && common >= CUSP_MIN_STROKE_IN_PEN_WIDTHS * stroke_width
         && behind >= separation + CUSP_MIN_DIVERGENCE_IN_PEN_WIDTHS * stroke_width;
     // Thinning ends each stroke about half a pen width inside its ink: the outline turns back
     // that far ahead of the two ends, or of the side that reaches the tip.
-    let apex = if (band_tip && !spread) || cusp {
+    let apex = if band_tip || cusp {
         a.at.midpoint(b.at) + (ua + ub).normalize() * (stroke_width / 2.0)
-    } else if a.stroke == b.stroke || spread {
+    } else if a.stroke == b.stroke || !same_way {
         return None;
     } else if staggered_tip(vertices, a, b, stroke_width) {
         b.at + ub * (stroke_width / 2.0)
