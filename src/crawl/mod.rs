@@ -10,6 +10,7 @@
 pub mod algorithm;
 mod bands;
 mod bridges;
+mod closure;
 pub mod neighbours;
 pub mod reconstruct;
 pub mod robust;

@@ -21,6 +21,7 @@ use super::bridges::{
     match_gap_bridges, BridgeableEnd, GapBridges, BRIDGE_MAX_IN_TYPICAL_GAPS,
     MAX_STRAIGHT_TURN_DEGREES,
 };
+use super::closure::close_across_side_by_side_ends;
 use super::reconstruct::{self, canonical_orientation, Reconstruction};
 use super::through::angle;
 use super::ReconstructError;
@@ -367,6 +368,7 @@ pub fn connect_strokes(strokes: &[Stroke], spacing: f64, stroke_width: f64) -> V
         .chain(attached)
         .collect();
     edges.extend(bridges.iter().map(|bridge| (bridge.a, bridge.b)));
+    close_across_side_by_side_ends(&vertices, &ends, &attachment, &mut edges, stroke_width);
     let vias: HashMap<(u32, u32), Vec<Point>> = bridges
         .into_iter()
         .filter(|bridge| !bridge.via.is_empty())
@@ -521,7 +523,7 @@ fn loop_and_tail(
 /// least [`MIN_EDGES_BEFORE_CLOSING`] + 1 edges) come out closed, paths open, single vertices as
 /// one-vertex chains. Deterministic: components are found in vertex order. An edge that would give
 /// a vertex a third neighbour (never made by the stroke graph) is ignored.
-fn components(vertex_count: usize, edges: &[(u32, u32)]) -> Vec<Chain> {
+pub(super) fn components(vertex_count: usize, edges: &[(u32, u32)]) -> Vec<Chain> {
     let mut adjacent: Vec<[u32; 2]> = vec![[u32::MAX; 2]; vertex_count];
     let mut degree = vec![0u8; vertex_count];
     for &(a, b) in edges {
