@@ -379,12 +379,16 @@ pub fn connect_strokes(strokes: &[Stroke], spacing: f64, stroke_width: f64) -> V
     // and cycles: the shapes. The paper's stop would only cut a chain where an outline comes back
     // near itself (an '8', a narrow neck); which gaps close is decided by the bridges alone.
     // A wide stroke left on its own, no bridge taken, is a lone band ([`super::bands`]).
-    let wide_from: HashMap<u32, usize> = strokes
+    let wide_at_end: HashMap<u32, usize> = strokes
         .iter()
         .enumerate()
         .filter(|(s, stroke)| stroke.wide && vertices.of_stroke[*s].len() >= 2)
-        .map(|(s, _)| (vertices.of_stroke[s][0], s))
+        .flat_map(|(s, _)| {
+            let of_stroke = &vertices.of_stroke[s];
+            [(of_stroke[0], s), (of_stroke[of_stroke.len() - 1], s)]
+        })
         .collect();
+    let stub_max = BAND_STUB_MAX_IN_PEN_WIDTHS * stroke_width;
     let (curves, is_band): (Vec<Polyline>, Vec<bool>) = components(positions.len(), &edges)
         .into_iter()
         .filter(|chain| chain.vertices.len() >= 2)
@@ -393,8 +397,8 @@ pub fn connect_strokes(strokes: &[Stroke], spacing: f64, stroke_width: f64) -> V
             let lone_band = !chain.closed
                 && [chain.vertices[0], chain.vertices[chain.vertices.len() - 1]]
                     .iter()
-                    .filter_map(|v| wide_from.get(v))
-                    .any(|&s| vertices.of_stroke[s].len() == chain.vertices.len());
+                    .filter_map(|v| wide_at_end.get(v))
+                    .any(|&s| band_with_stub(&chain, &vertices.of_stroke[s], positions, stub_max));
             (
                 chain_to_curve(chain, &vertices, &attachment, &vias),
                 lone_band,
@@ -402,6 +406,45 @@ pub fn connect_strokes(strokes: &[Stroke], spacing: f64, stroke_width: f64) -> V
         })
         .unzip();
     splice_lone_bands(curves, &is_band, stroke_width)
+}
+
+/// DECISION: (stop 28) a wide dash ([`Stroke::wide`]) that took a bridge to a stub no longer than
+/// this (pen widths) is a lone band all the same: a spike or a tail cut by a pen lift just above
+/// its base, whose base left only a stub on the outline, too short to be measured as a band (the
+/// strokes stage measures a branch's width only two pen widths clear of its junction, over at
+/// least two stretches of two pen widths: six in all).
+const BAND_STUB_MAX_IN_PEN_WIDTHS: f64 = 6.0;
+
+/// Whether the open `chain` is the wide stroke `stroke` (its vertices), alone or with a stub of at
+/// most `stub_max` bridged to it at one end: see
+/// [`BAND_STUB_MAX_IN_PEN_WIDTHS`].
+fn band_with_stub(chain: &Chain, stroke: &[u32], positions: &[Point], stub_max: f64) -> bool {
+    let n = chain.vertices.len();
+    if stroke.len() > n {
+        return false;
+    }
+    let rest = n - stroke.len();
+    let at_front = stroke.contains(&chain.vertices[0]);
+    let band_end = if at_front { stroke.len() - 1 } else { rest };
+    let in_band = |k: usize| {
+        if at_front {
+            k <= band_end
+        } else {
+            k >= band_end
+        }
+    };
+    // The chain holds the stroke whole, at one end.
+    if !(0..n)
+        .filter(|&k| in_band(k))
+        .all(|k| stroke.contains(&chain.vertices[k]))
+    {
+        return false;
+    }
+    let stub: Vec<Point> = (0..n)
+        .filter(|&k| !in_band(k))
+        .map(|k| positions[chain.vertices[k] as usize])
+        .collect();
+    polyline_length(&stub, false) <= stub_max
 }
 
 /// DECISION: (stop 24) an end that comes back onto its own chain reaches it within this much
@@ -1058,6 +1101,47 @@ mod tests {
                 );
             } else {
                 assert_eq!(curves.len(), 2, "{curves:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn a_band_cut_just_above_its_base_goes_out_and_back_with_its_stub() {
+        // The square outline, but the finger leaves a stub on it: a stroke from a T-junction on
+        // the right side 12 px out (4 pen widths, too short for the strokes stage to measure as
+        // a band), a 6 px pen lift, and the wide dash beyond it. The stub and the dash are one
+        // band, spliced into the outline out to the tip and back. A stub of 24 px (8 pen widths)
+        // is a line of its own, which the strokes stage would have measured: nothing is spliced.
+        let outline = |x: f64| Stroke {
+            line: Polyline::new(
+                [(0.0, 0.0), (x, 0.0), (x, 100.0), (0.0, 100.0)]
+                    .into_iter()
+                    .map(Point::from)
+                    .collect(),
+                true,
+            ),
+            ends: [StrokeEnd::Free, StrokeEnd::Free],
+            wide: false,
+        };
+        for stub in [12.0, 24.0] {
+            let junction = Point::new(100.0, 50.0);
+            let stub_stroke = Stroke {
+                ends: [StrokeEnd::Attached(junction), StrokeEnd::Free],
+                ..open(&line((100.0, 50.0), (100.0 + stub, 50.0)))
+            };
+            let dash = Stroke {
+                wide: true,
+                ..open(&line((106.0 + stub, 50.0), (146.0 + stub, 50.0)))
+            };
+            let strokes =
+                crate::strokes::sample_strokes(&[outline(100.0), stub_stroke, dash], 4.0, 0.5);
+            let curves = connect(&strokes, Method::Strokes, 4.0, 3.0);
+            let closed_reaching_tip = curves
+                .iter()
+                .any(|curve| curve.closed && curve.points.iter().any(|p| p.x > 140.0 + stub));
+            assert_eq!(closed_reaching_tip, stub < 20.0, "stub {stub}: {curves:?}");
+            if stub < 20.0 {
+                assert_eq!(curves.len(), 1, "{curves:?}");
             }
         }
     }
