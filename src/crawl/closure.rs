@@ -10,7 +10,8 @@ use std::collections::{HashMap, HashSet};
 use kurbo::{Point, Vec2};
 
 use super::bridges::BridgeableEnd;
-use super::strokes::{components, StrokeVertices};
+use super::strokes::{components, point_key, PointKey, StrokeVertices};
+use crate::geometry::Polyline;
 
 /// DECISION: two free ends side by side are at most this far apart (centre to centre, in widths
 /// of the page's typical stroke) to be joined across: a leg's or finger's two sides drawn 0.5–3
@@ -175,6 +176,192 @@ fn densified(points: &[Point], step: f64) -> Vec<Point> {
     dense
 }
 
+/// A loop's neck is at least this long (pen widths) between the knot and the junction where the
+/// second arm joins it: shorter, the arm starts at the knot itself (the leg of an "R").
+const NECK_MIN_IN_PEN_WIDTHS: f64 = 1.0;
+
+/// The arm turns into the neck by at most this much (degrees) where it joins it: it goes on along
+/// the neck, as a line drawn in and back out alongside itself does.
+const NECK_MAX_TURN_DEGREES: f64 = 60.0;
+
+/// An arm's direction where it joins the neck is measured this many pen widths back along it.
+const ARM_DIRECTION_IN_PEN_WIDTHS: f64 = 2.0;
+
+/// DECISION: (stop 28) a loop with a shared neck, as a lasso, a cursive "l" or a looped hairpin
+/// are drawn: a line comes in, loops round and goes back out alongside itself, merged with it
+/// into one stroke of ink for a while, then parts from it. The ink of the run alongside is one
+/// stroke wide, so nothing in the width says it is two; the crawl reads a closed loop, a tail
+/// (the neck and one arm) that leaves it at the knot where the loop closed ([`super::strokes`]'s
+/// loop and tail), and the other arm ending on the tail a little way from the knot, going on
+/// along the neck towards it. That is one open curve traced through the neck twice: in along
+/// the arm, along the neck to the knot, round the loop, back along the neck and out along the
+/// tail. A balloon's string (one tail, no arm joining it) and an "R"'s leg (starting at the
+/// knot itself) stay as they are.
+pub(super) fn thread_loops_through_shared_necks(
+    curves: Vec<Polyline>,
+    is_band: Vec<bool>,
+    stroke_width: f64,
+) -> (Vec<Polyline>, Vec<bool>) {
+    let on_loop: HashMap<PointKey, usize> = curves
+        .iter()
+        .enumerate()
+        .filter(|(_, curve)| curve.closed && curve.points.len() >= 3)
+        .flat_map(|(c, curve)| curve.points.iter().map(move |&p| (point_key(p), c)))
+        .collect();
+    if on_loop.is_empty() {
+        return (curves, is_band);
+    }
+    let mut used = vec![false; curves.len()];
+    let mut threaded: Vec<(usize, Polyline)> = Vec::new();
+    for tail in 0..curves.len() {
+        let tail_curve = &curves[tail];
+        if used[tail] || tail_curve.closed || is_band[tail] || tail_curve.points.len() < 2 {
+            continue;
+        }
+        for from_last in [false, true] {
+            let mut neck = tail_curve.points.clone();
+            if from_last {
+                neck.reverse();
+            }
+            let Some(&lp) = on_loop.get(&point_key(neck[0])) else {
+                continue;
+            };
+            if used[lp] {
+                continue;
+            }
+            let Some((arm, joined)) =
+                arm_joining_neck(&curves, &used, &is_band, tail, &neck, stroke_width)
+            else {
+                continue;
+            };
+            let path = threaded_path(&curves[arm], joined, &neck, &curves[lp], neck[0]);
+            used[tail] = true;
+            used[arm] = true;
+            used[lp] = true;
+            threaded.push((tail, Polyline::new(path, false)));
+            break;
+        }
+    }
+    if threaded.is_empty() {
+        return (curves, is_band);
+    }
+    let mut replacement: HashMap<usize, Polyline> = threaded.into_iter().collect();
+    let mut out = Vec::with_capacity(curves.len());
+    let mut out_band = Vec::with_capacity(curves.len());
+    for (c, curve) in curves.into_iter().enumerate() {
+        if let Some(path) = replacement.remove(&c) {
+            out.push(path);
+            out_band.push(false);
+        } else if !used[c] {
+            out.push(curve);
+            out_band.push(is_band[c]);
+        }
+    }
+    (out, out_band)
+}
+
+/// Where another open curve's end joins `neck` (the tail read from the knot), going on along it
+/// towards the knot: the arm's index, and the join as (whether the arm's last point joins, the
+/// neck segment it lies on).
+fn arm_joining_neck(
+    curves: &[Polyline],
+    used: &[bool],
+    is_band: &[bool],
+    tail: usize,
+    neck: &[Point],
+    stroke_width: f64,
+) -> Option<(usize, (bool, usize))> {
+    let mut along = vec![0.0];
+    for w in neck.windows(2) {
+        along.push(along[along.len() - 1] + w[0].distance(w[1]));
+    }
+    let total = along[along.len() - 1];
+    let min_neck = NECK_MIN_IN_PEN_WIDTHS * stroke_width;
+    for (arm, curve) in curves.iter().enumerate() {
+        if arm == tail || used[arm] || is_band[arm] || curve.closed || curve.points.len() < 2 {
+            continue;
+        }
+        for at_last in [true, false] {
+            let mut points = curve.points.clone();
+            if !at_last {
+                points.reverse();
+            }
+            let end = points[points.len() - 1];
+            // The segment of the neck the end lies on (within half a pixel).
+            let Some(segment) = (0..neck.len() - 1).find(|&k| {
+                crate::geometry::polyline::distance_to_segment(
+                    end,
+                    kurbo::Line::new(neck[k], neck[k + 1]),
+                ) <= 0.5
+            }) else {
+                continue;
+            };
+            let s = along[segment] + neck[segment].distance(end);
+            if s < min_neck || s > total - min_neck {
+                continue;
+            }
+            let behind = super::strokes::point_at_length(
+                &points.iter().rev().copied().collect::<Vec<_>>(),
+                ARM_DIRECTION_IN_PEN_WIDTHS * stroke_width,
+            );
+            let (incoming, towards_knot) = (end - behind, neck[segment] - end);
+            let towards_knot = if towards_knot.hypot() > 0.0 {
+                towards_knot
+            } else {
+                neck[0] - end
+            };
+            if incoming.hypot() == 0.0 || towards_knot.hypot() == 0.0 {
+                continue;
+            }
+            let turn = super::through::angle(incoming.normalize(), towards_knot.normalize());
+            if turn <= NECK_MAX_TURN_DEGREES.to_radians() {
+                return Some((arm, (at_last, segment)));
+            }
+        }
+    }
+    None
+}
+
+/// The arm in to the join, the neck back to the knot, the loop round, and the tail out.
+fn threaded_path(
+    arm: &Polyline,
+    (at_last, segment): (bool, usize),
+    neck: &[Point],
+    loop_curve: &Polyline,
+    knot: Point,
+) -> Vec<Point> {
+    let mut path: Vec<Point> = arm.points.clone();
+    if !at_last {
+        path.reverse();
+    }
+    // Back along the neck from the join to the knot.
+    path.extend(neck[..=segment].iter().rev().copied());
+    // Round the loop from the knot, the way that turns least on arriving from the neck.
+    let ring = &loop_curve.points;
+    let n = ring.len();
+    let start = ring.iter().position(|&p| p == knot).unwrap_or(0);
+    let arriving = knot - path[path.len().saturating_sub(2)];
+    let forward = ring[(start + 1) % n] - knot;
+    let backward = ring[(start + n - 1) % n] - knot;
+    // The cosine of the turn from the neck into a first step round the loop.
+    let ahead = |v: Vec2| {
+        if v.hypot() > 0.0 && arriving.hypot() > 0.0 {
+            arriving.dot(v) / (v.hypot() * arriving.hypot())
+        } else {
+            -1.0
+        }
+    };
+    let step = if ahead(forward) >= ahead(backward) {
+        1
+    } else {
+        n - 1
+    };
+    path.extend((1..=n).map(|k| ring[(start + k * step) % n]));
+    // Out along the neck and the tail.
+    path.extend(neck[1..].iter().copied());
+    path
+}
+
 #[cfg(test)]
 mod tests {
     use kurbo::Point;
@@ -244,5 +431,71 @@ mod tests {
         let curves = connect(&strokes, Method::Strokes, 3.0, 3.0);
         assert_eq!(curves.len(), 2, "{curves:?}");
         assert!(curves.iter().all(|curve| !curve.closed), "{curves:?}");
+    }
+
+    /// A circle arc about `center` from `from` to `to` degrees, sampled about every 3 px.
+    fn arc_points(center: (f64, f64), radius: f64, from: f64, to: f64) -> Vec<(f64, f64)> {
+        let steps = (radius * (to - from).abs().to_radians() / 3.0).ceil() as usize;
+        (0..=steps)
+            .map(|k| {
+                let angle = (from + (to - from) * k as f64 / steps as f64).to_radians();
+                (
+                    center.0 + radius * angle.cos(),
+                    center.1 + radius * angle.sin(),
+                )
+            })
+            .collect()
+    }
+
+    /// A lasso: a line comes in from the lower left to (70, 50), runs right along y = 50 to the
+    /// knot at (100, 50), loops round a circle of radius 25 and comes back to the knot, where it
+    /// merged with itself: the skeleton has one stroke from the lower arm's tip round the
+    /// circle's lower half to a pen lift at its far side, the upper half of the circle ending on
+    /// that stroke at the knot, and the upper arm (from `upper_arm_from`) ending on it at
+    /// (70, 50).
+    fn lasso(upper_arm_from: (f64, f64)) -> Vec<Stroke> {
+        let mut lower: Vec<(f64, f64)> = vec![(30.0, 90.0), (70.0, 50.0), (100.0, 50.0)];
+        lower.extend(
+            arc_points((125.0, 50.0), 25.0, 180.0, 345.0)
+                .into_iter()
+                .skip(1),
+        );
+        let mut lower = stroke_through(&lower);
+        // The stroke turns at its corners: keep its own points, not resampled ones.
+        lower.line = Polyline::new(lower.line.points.clone(), false);
+        let mut upper = stroke_through(&arc_points((125.0, 50.0), 25.0, 180.0, 15.0));
+        upper.ends = [
+            StrokeEnd::Attached(Point::new(100.0, 50.0)),
+            StrokeEnd::Free,
+        ];
+        let mut arm = stroke_through(&[upper_arm_from, (70.0, 50.0)]);
+        arm.ends = [StrokeEnd::Free, StrokeEnd::Attached(Point::new(70.0, 50.0))];
+        vec![lower, upper, arm]
+    }
+
+    #[test]
+    fn a_lasso_is_one_open_curve_through_its_neck_twice() {
+        let curves = connect(&lasso((30.0, 10.0)), Method::Strokes, 3.0, 3.0);
+        assert_eq!(curves.len(), 1, "{curves:?}");
+        assert!(!curves[0].closed, "{curves:?}");
+        let passes = |x: f64, y: f64| {
+            curves[0]
+                .points
+                .iter()
+                .any(|p| p.distance(Point::new(x, y)) < 3.0)
+        };
+        assert!(
+            passes(125.0, 25.0) && passes(125.0, 75.0) && passes(85.0, 50.0),
+            "{curves:?}"
+        );
+    }
+
+    #[test]
+    fn a_line_ending_square_on_a_balloons_string_stays_apart() {
+        // The same, but the second line comes straight down onto the string at (70, 50): it does
+        // not go on along the neck, so the loop, its string and the line stay three curves.
+        let curves = connect(&lasso((70.0, 10.0)), Method::Strokes, 3.0, 3.0);
+        assert_eq!(curves.len(), 3, "{curves:?}");
+        assert_eq!(curves.iter().filter(|curve| curve.closed).count(), 1);
     }
 }

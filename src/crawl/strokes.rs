@@ -21,7 +21,7 @@ use super::bridges::{
     match_gap_bridges, BridgeableEnd, GapBridges, BRIDGE_MAX_IN_TYPICAL_GAPS,
     MAX_STRAIGHT_TURN_DEGREES,
 };
-use super::closure::close_across_side_by_side_ends;
+use super::closure::{close_across_side_by_side_ends, thread_loops_through_shared_necks};
 use super::reconstruct::{self, canonical_orientation, Reconstruction};
 use super::through::angle;
 use super::ReconstructError;
@@ -405,6 +405,7 @@ pub fn connect_strokes(strokes: &[Stroke], spacing: f64, stroke_width: f64) -> V
             )
         })
         .unzip();
+    let (curves, is_band) = thread_loops_through_shared_necks(curves, is_band, stroke_width);
     splice_lone_bands(curves, &is_band, stroke_width)
 }
 
