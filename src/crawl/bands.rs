@@ -27,11 +27,11 @@ const DIRECTION_REACH_IN_PEN_WIDTHS: f64 = 2.0;
 
 /// A place on a closed curve: the segment from point `segment` to the next, at parameter `t`.
 #[derive(Clone, Copy)]
-struct Foot {
-    curve: usize,
-    segment: usize,
+pub(super) struct Foot {
+    pub(super) curve: usize,
+    pub(super) segment: usize,
     t: f64,
-    point: Point,
+    pub(super) point: Point,
     distance: f64,
 }
 
@@ -146,13 +146,13 @@ fn point_back_from(points: &[Point], from_last: bool, distance: f64) -> Point {
 }
 
 /// The segments of the closed curves in square cells, for the nearest one to a point.
-struct SegmentGrid {
+pub(super) struct SegmentGrid {
     cell: f64,
     cells: HashMap<(i64, i64), Vec<(usize, usize)>>,
 }
 
 impl SegmentGrid {
-    fn new(curves: &[Polyline], cell: f64) -> Self {
+    pub(super) fn new(curves: &[Polyline], cell: f64) -> Self {
         let mut grid = Self {
             cell,
             cells: HashMap::new(),
@@ -184,7 +184,7 @@ impl SegmentGrid {
     }
 
     /// The nearest point of a closed curve's segment to `p` within `reach`.
-    fn nearest(&self, p: Point, curves: &[Polyline], reach: f64) -> Option<Foot> {
+    pub(super) fn nearest(&self, p: Point, curves: &[Polyline], reach: f64) -> Option<Foot> {
         let key = self.cell_of(p);
         let span = (reach / self.cell).ceil() as i64;
         let mut best: Option<Foot> = None;

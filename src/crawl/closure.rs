@@ -7,10 +7,12 @@
 
 use std::collections::{HashMap, HashSet};
 
-use kurbo::{Point, Vec2};
+use kurbo::{Line, ParamCurve, ParamCurveNearest, Point, Vec2};
 
+use super::bands::{Foot, SegmentGrid};
 use super::bridges::BridgeableEnd;
-use super::strokes::{components, point_key, PointKey, StrokeVertices};
+use super::strokes::{components, point_at_length, StrokeVertices};
+use super::through::angle;
 use crate::geometry::Polyline;
 
 /// DECISION: two free ends side by side are at most this far apart (centre to centre, in widths
@@ -181,38 +183,39 @@ fn densified(points: &[Point], step: f64) -> Vec<Point> {
 const NECK_MIN_IN_PEN_WIDTHS: f64 = 1.0;
 
 /// The arm turns into the neck by at most this much (degrees) where it joins it: it goes on along
-/// the neck, as a line drawn in and back out alongside itself does.
+/// the neck, as a line drawn in and back out alongside itself does. Across a pen lift, it also
+/// points at the neck within this much.
 const NECK_MAX_TURN_DEGREES: f64 = 60.0;
 
 /// An arm's direction where it joins the neck is measured this many pen widths back along it.
 const ARM_DIRECTION_IN_PEN_WIDTHS: f64 = 2.0;
 
+/// A curve's end lies on another curve (a T-end's junction point, a knot) within this many pixels.
+const ON_CURVE_PX: f64 = 0.5;
+
 /// DECISION: (stop 28) a loop with a shared neck, as a lasso, a cursive "l" or a looped hairpin
 /// are drawn: a line comes in, loops round and goes back out alongside itself, merged with it
 /// into one stroke of ink for a while, then parts from it. The ink of the run alongside is one
 /// stroke wide, so nothing in the width says it is two; the crawl reads a closed loop, a tail
-/// (the neck and one arm) that leaves it at the knot where the loop closed ([`super::strokes`]'s
-/// loop and tail), and the other arm ending on the tail a little way from the knot, going on
-/// along the neck towards it. That is one open curve traced through the neck twice: in along
-/// the arm, along the neck to the knot, round the loop, back along the neck and out along the
-/// tail. A balloon's string (one tail, no arm joining it) and an "R"'s leg (starting at the
-/// knot itself) stay as they are.
+/// (the neck and one arm) that leaves it at the knot (where the loop closed on its own stroke, or
+/// a T-junction on the loop), and the other arm ending on the tail a little way from the knot, or
+/// across a pen lift (within an ordinary bridge) pointing at it, going on along the neck towards
+/// the knot. That is one open curve traced through the neck twice: in along the arm, along the
+/// neck to the knot, round the loop, back along the neck and out along the tail. A balloon's
+/// string (one tail, no arm joining it) and an "R"'s leg (starting at the knot itself) stay as
+/// they are.
 pub(super) fn thread_loops_through_shared_necks(
     curves: Vec<Polyline>,
     is_band: Vec<bool>,
     stroke_width: f64,
+    bridge_reach: f64,
 ) -> (Vec<Polyline>, Vec<bool>) {
-    let on_loop: HashMap<PointKey, usize> = curves
-        .iter()
-        .enumerate()
-        .filter(|(_, curve)| curve.closed && curve.points.len() >= 3)
-        .flat_map(|(c, curve)| curve.points.iter().map(move |&p| (point_key(p), c)))
-        .collect();
-    if on_loop.is_empty() {
+    if !curves.iter().any(|curve| curve.closed) {
         return (curves, is_band);
     }
+    let grid = SegmentGrid::new(&curves, (4.0 * stroke_width).max(1.0));
     let mut used = vec![false; curves.len()];
-    let mut threaded: Vec<(usize, Polyline)> = Vec::new();
+    let mut threaded: HashMap<usize, Polyline> = HashMap::new();
     for tail in 0..curves.len() {
         let tail_curve = &curves[tail];
         if used[tail] || tail_curve.closed || is_band[tail] || tail_curve.points.len() < 2 {
@@ -223,33 +226,38 @@ pub(super) fn thread_loops_through_shared_necks(
             if from_last {
                 neck.reverse();
             }
-            let Some(&lp) = on_loop.get(&point_key(neck[0])) else {
+            let Some(knot) = grid.nearest(neck[0], &curves, ON_CURVE_PX) else {
                 continue;
             };
-            if used[lp] {
+            if used[knot.curve] || curves[knot.curve].points.len() < 3 {
                 continue;
             }
-            let Some((arm, joined)) =
-                arm_joining_neck(&curves, &used, &is_band, tail, &neck, stroke_width)
-            else {
+            let context = NeckSearch {
+                curves: &curves,
+                used: &used,
+                is_band: &is_band,
+                tail,
+                stroke_width,
+                bridge_reach,
+            };
+            let Some(join) = context.arm_joining(&neck) else {
                 continue;
             };
-            let path = threaded_path(&curves[arm], joined, &neck, &curves[lp], neck[0]);
+            let path = threaded_path(&curves[join.arm], &join, &neck, &curves[knot.curve], &knot);
             used[tail] = true;
-            used[arm] = true;
-            used[lp] = true;
-            threaded.push((tail, Polyline::new(path, false)));
+            used[join.arm] = true;
+            used[knot.curve] = true;
+            threaded.insert(tail, Polyline::new(path, false));
             break;
         }
     }
     if threaded.is_empty() {
         return (curves, is_band);
     }
-    let mut replacement: HashMap<usize, Polyline> = threaded.into_iter().collect();
     let mut out = Vec::with_capacity(curves.len());
     let mut out_band = Vec::with_capacity(curves.len());
     for (c, curve) in curves.into_iter().enumerate() {
-        if let Some(path) = replacement.remove(&c) {
+        if let Some(path) = threaded.remove(&c) {
             out.push(path);
             out_band.push(false);
         } else if !used[c] {
@@ -260,105 +268,170 @@ pub(super) fn thread_loops_through_shared_necks(
     (out, out_band)
 }
 
-/// Where another open curve's end joins `neck` (the tail read from the knot), going on along it
-/// towards the knot: the arm's index, and the join as (whether the arm's last point joins, the
-/// neck segment it lies on).
-fn arm_joining_neck(
-    curves: &[Polyline],
-    used: &[bool],
-    is_band: &[bool],
-    tail: usize,
-    neck: &[Point],
-    stroke_width: f64,
-) -> Option<(usize, (bool, usize))> {
-    let mut along = vec![0.0];
-    for w in neck.windows(2) {
-        along.push(along[along.len() - 1] + w[0].distance(w[1]));
-    }
-    let total = along[along.len() - 1];
-    let min_neck = NECK_MIN_IN_PEN_WIDTHS * stroke_width;
-    for (arm, curve) in curves.iter().enumerate() {
-        if arm == tail || used[arm] || is_band[arm] || curve.closed || curve.points.len() < 2 {
-            continue;
-        }
-        for at_last in [true, false] {
-            let mut points = curve.points.clone();
-            if !at_last {
-                points.reverse();
-            }
-            let end = points[points.len() - 1];
-            // The segment of the neck the end lies on (within half a pixel).
-            let Some(segment) = (0..neck.len() - 1).find(|&k| {
-                crate::geometry::polyline::distance_to_segment(
-                    end,
-                    kurbo::Line::new(neck[k], neck[k + 1]),
-                ) <= 0.5
-            }) else {
-                continue;
-            };
-            let s = along[segment] + neck[segment].distance(end);
-            if s < min_neck || s > total - min_neck {
-                continue;
-            }
-            let behind = super::strokes::point_at_length(
-                &points.iter().rev().copied().collect::<Vec<_>>(),
-                ARM_DIRECTION_IN_PEN_WIDTHS * stroke_width,
-            );
-            let (incoming, towards_knot) = (end - behind, neck[segment] - end);
-            let towards_knot = if towards_knot.hypot() > 0.0 {
-                towards_knot
-            } else {
-                neck[0] - end
-            };
-            if incoming.hypot() == 0.0 || towards_knot.hypot() == 0.0 {
-                continue;
-            }
-            let turn = super::through::angle(incoming.normalize(), towards_knot.normalize());
-            if turn <= NECK_MAX_TURN_DEGREES.to_radians() {
-                return Some((arm, (at_last, segment)));
-            }
-        }
-    }
-    None
+/// Where an arm joins a neck: the arm's index, whether its last point is the joining end, the
+/// neck's segment the join lies on, and the join point.
+struct NeckJoin {
+    arm: usize,
+    at_last: bool,
+    segment: usize,
+    point: Point,
 }
 
-/// The arm in to the join, the neck back to the knot, the loop round, and the tail out.
+/// What the search for an arm joining a neck looks through.
+struct NeckSearch<'a> {
+    curves: &'a [Polyline],
+    used: &'a [bool],
+    is_band: &'a [bool],
+    tail: usize,
+    stroke_width: f64,
+    bridge_reach: f64,
+}
+
+impl NeckSearch<'_> {
+    /// The first open curve whose end joins `neck` (the tail read from the knot) and goes on along
+    /// it towards the knot ([`thread_loops_through_shared_necks`]).
+    fn arm_joining(&self, neck: &[Point]) -> Option<NeckJoin> {
+        let mut along = vec![0.0];
+        for w in neck.windows(2) {
+            along.push(along[along.len() - 1] + w[0].distance(w[1]));
+        }
+        let total = along[along.len() - 1];
+        let min_neck = NECK_MIN_IN_PEN_WIDTHS * self.stroke_width;
+        let max_turn = NECK_MAX_TURN_DEGREES.to_radians();
+        for (arm, curve) in self.curves.iter().enumerate() {
+            if arm == self.tail
+                || self.used[arm]
+                || self.is_band[arm]
+                || curve.closed
+                || curve.points.len() < 2
+            {
+                continue;
+            }
+            for at_last in [true, false] {
+                let mut points = curve.points.clone();
+                if !at_last {
+                    points.reverse();
+                }
+                let end = points[points.len() - 1];
+                let behind = {
+                    let reversed: Vec<Point> = points.iter().rev().copied().collect();
+                    point_at_length(&reversed, ARM_DIRECTION_IN_PEN_WIDTHS * self.stroke_width)
+                };
+                let incoming = end - behind;
+                if incoming.hypot() == 0.0 {
+                    continue;
+                }
+                let Some((segment, point)) = join_on(neck, end, incoming, self.bridge_reach) else {
+                    continue;
+                };
+                let s = along[segment] + neck[segment].distance(point);
+                if s < min_neck || s > total - min_neck {
+                    continue;
+                }
+                // The neck's way from the join towards the knot, over a pen width of it.
+                let towards_knot = neck[..=segment]
+                    .iter()
+                    .rev()
+                    .find(|p| p.distance(point) >= self.stroke_width)
+                    .unwrap_or(&neck[0])
+                    .to_owned()
+                    - point;
+                let turns_on = to_knot_turn(incoming, towards_knot) <= max_turn;
+                if turns_on {
+                    return Some(NeckJoin {
+                        arm,
+                        at_last,
+                        segment,
+                        point,
+                    });
+                }
+            }
+        }
+        None
+    }
+}
+
+/// Where an arm's end at `end`, coming in along `incoming`, joins `neck`: the neck's segment and
+/// the point, where the end lies on the neck (within [`ON_CURVE_PX`]), or else where its line
+/// first runs into the neck within `reach` (across a pen lift).
+fn join_on(neck: &[Point], end: Point, incoming: Vec2, reach: f64) -> Option<(usize, Point)> {
+    let on = (0..neck.len() - 1)
+        .map(|k| {
+            let line = Line::new(neck[k], neck[k + 1]);
+            let nearest = line.nearest(end, 1e-9);
+            (nearest.distance_sq.sqrt(), k, line.eval(nearest.t))
+        })
+        .min_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)))?;
+    if on.0 <= ON_CURVE_PX {
+        return Some((on.1, on.2));
+    }
+    let way = incoming.normalize();
+    (0..neck.len() - 1)
+        .filter_map(|k| {
+            let (a, b) = (neck[k], neck[k + 1]);
+            let run = b - a;
+            let denominator = way.cross(run);
+            if denominator.abs() < 1e-12 {
+                return None;
+            }
+            let t = (a - end).cross(run) / denominator;
+            let u = (a - end).cross(way) / denominator;
+            ((0.0..=reach).contains(&t) && (0.0..=1.0).contains(&u)).then(|| (t, k, a + run * u))
+        })
+        .min_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)))
+        .map(|(_, k, point)| (k, point))
+}
+
+/// The turn (radians) from an arm's way in into the neck's way towards the knot.
+fn to_knot_turn(incoming: Vec2, towards_knot: Vec2) -> f64 {
+    if incoming.hypot() == 0.0 || towards_knot.hypot() == 0.0 {
+        return std::f64::consts::PI;
+    }
+    angle(incoming.normalize(), towards_knot.normalize())
+}
+
+/// The arm in to the join, the neck back to the knot, the loop round from the knot and back to
+/// it, and the tail out.
 fn threaded_path(
     arm: &Polyline,
-    (at_last, segment): (bool, usize),
+    join: &NeckJoin,
     neck: &[Point],
     loop_curve: &Polyline,
-    knot: Point,
+    knot: &Foot,
 ) -> Vec<Point> {
     let mut path: Vec<Point> = arm.points.clone();
-    if !at_last {
+    if !join.at_last {
         path.reverse();
     }
+    path.push(join.point);
     // Back along the neck from the join to the knot.
-    path.extend(neck[..=segment].iter().rev().copied());
+    path.extend(neck[1..=join.segment].iter().rev().copied());
+    path.push(knot.point);
     // Round the loop from the knot, the way that turns least on arriving from the neck.
     let ring = &loop_curve.points;
     let n = ring.len();
-    let start = ring.iter().position(|&p| p == knot).unwrap_or(0);
-    let arriving = knot - path[path.len().saturating_sub(2)];
-    let forward = ring[(start + 1) % n] - knot;
-    let backward = ring[(start + n - 1) % n] - knot;
+    let arriving = knot.point - path[path.len().saturating_sub(2)];
+    let forward: Vec<Point> = (1..=n).map(|k| ring[(knot.segment + k) % n]).collect();
+    let backward: Vec<Point> = (0..n).map(|k| ring[(knot.segment + n - k) % n]).collect();
     // The cosine of the turn from the neck into a first step round the loop.
-    let ahead = |v: Vec2| {
+    let ahead = |first: Point| {
+        let v = first - knot.point;
         if v.hypot() > 0.0 && arriving.hypot() > 0.0 {
             arriving.dot(v) / (v.hypot() * arriving.hypot())
         } else {
             -1.0
         }
     };
-    let step = if ahead(forward) >= ahead(backward) {
-        1
+    let round = if ahead(forward[0]) >= ahead(backward[0]) {
+        forward
     } else {
-        n - 1
+        backward
     };
-    path.extend((1..=n).map(|k| ring[(start + k * step) % n]));
+    path.extend(round);
+    path.push(knot.point);
     // Out along the neck and the tail.
     path.extend(neck[1..].iter().copied());
+    path.dedup();
     path
 }
 
@@ -454,6 +527,12 @@ mod tests {
     /// that stroke at the knot, and the upper arm (from `upper_arm_from`) ending on it at
     /// (70, 50).
     fn lasso(upper_arm_from: (f64, f64)) -> Vec<Stroke> {
+        lasso_with_lift(upper_arm_from, 0.0)
+    }
+
+    /// The lasso, with the upper arm stopping `lift` px short of the neck (a pen lift, its end
+    /// free) when `lift` is more than 0.
+    fn lasso_with_lift(upper_arm_from: (f64, f64), lift: f64) -> Vec<Stroke> {
         let mut lower: Vec<(f64, f64)> = vec![(30.0, 90.0), (70.0, 50.0), (100.0, 50.0)];
         lower.extend(
             arc_points((125.0, 50.0), 25.0, 180.0, 345.0)
@@ -468,8 +547,13 @@ mod tests {
             StrokeEnd::Attached(Point::new(100.0, 50.0)),
             StrokeEnd::Free,
         ];
-        let mut arm = stroke_through(&[upper_arm_from, (70.0, 50.0)]);
-        arm.ends = [StrokeEnd::Free, StrokeEnd::Attached(Point::new(70.0, 50.0))];
+        let join = Point::new(70.0, 50.0);
+        let from = Point::from(upper_arm_from);
+        let stop = join - (join - from).normalize() * lift;
+        let mut arm = stroke_through(&[upper_arm_from, (stop.x, stop.y)]);
+        if lift == 0.0 {
+            arm.ends = [StrokeEnd::Free, StrokeEnd::Attached(join)];
+        }
         vec![lower, upper, arm]
     }
 
@@ -488,6 +572,20 @@ mod tests {
             passes(125.0, 25.0) && passes(125.0, 75.0) && passes(85.0, 50.0),
             "{curves:?}"
         );
+    }
+
+    #[test]
+    fn a_lasso_whose_arm_stops_short_of_the_neck_is_one_open_curve() {
+        // The upper arm stops 6 px short of the neck, pointing at it (a pen lift where the two
+        // runs meet): it goes on across the lift along the neck all the same.
+        let curves = connect(
+            &lasso_with_lift((30.0, 10.0), 6.0),
+            Method::Strokes,
+            3.0,
+            3.0,
+        );
+        assert_eq!(curves.len(), 1, "{curves:?}");
+        assert!(!curves[0].closed, "{curves:?}");
     }
 
     #[test]

@@ -405,7 +405,9 @@ pub fn connect_strokes(strokes: &[Stroke], spacing: f64, stroke_width: f64) -> V
             )
         })
         .unzip();
-    let (curves, is_band) = thread_loops_through_shared_necks(curves, is_band, stroke_width);
+    let bridge_reach = BRIDGE_MAX_IN_TYPICAL_GAPS * typical_gap + stroke_width;
+    let (curves, is_band) =
+        thread_loops_through_shared_necks(curves, is_band, stroke_width, bridge_reach);
     splice_lone_bands(curves, &is_band, stroke_width)
 }
 
