@@ -11,7 +11,7 @@ use kurbo::{Line, ParamCurve, ParamCurveNearest, Point, Vec2};
 
 use super::bands::{Foot, SegmentGrid};
 use super::bridges::BridgeableEnd;
-use super::strokes::{components, point_at_length, StrokeVertices};
+use super::strokes::{components, StrokeVertices};
 use super::through::angle;
 use crate::geometry::Polyline;
 
@@ -214,6 +214,7 @@ pub(super) fn thread_loops_through_shared_necks(
         return (curves, is_band);
     }
     let grid = SegmentGrid::new(&curves, (4.0 * stroke_width).max(1.0));
+    let ends = EndGrid::new(&curves, &is_band, bridge_reach.max(1.0));
     let mut used = vec![false; curves.len()];
     let mut threaded: HashMap<usize, Polyline> = HashMap::new();
     for tail in 0..curves.len() {
@@ -235,7 +236,7 @@ pub(super) fn thread_loops_through_shared_necks(
             let context = NeckSearch {
                 curves: &curves,
                 used: &used,
-                is_band: &is_band,
+                ends: &ends,
                 tail,
                 stroke_width,
                 bridge_reach,
@@ -281,13 +282,99 @@ struct NeckJoin {
 struct NeckSearch<'a> {
     curves: &'a [Polyline],
     used: &'a [bool],
-    is_band: &'a [bool],
+    /// The ends of the open curves that may be arms, by cell of [`Self::bridge_reach`].
+    ends: &'a EndGrid,
     tail: usize,
     stroke_width: f64,
     bridge_reach: f64,
 }
 
+/// The ends of open curves (the curve, and whether it is its last point) in square cells.
+struct EndGrid {
+    cell: f64,
+    cells: HashMap<(i64, i64), Vec<(usize, bool)>>,
+}
+
+impl EndGrid {
+    /// The ends of the open curves of `curves` that are not bands.
+    fn new(curves: &[Polyline], is_band: &[bool], cell: f64) -> Self {
+        let mut grid = Self {
+            cell,
+            cells: HashMap::new(),
+        };
+        for (c, curve) in curves.iter().enumerate() {
+            if curve.closed || is_band[c] || curve.points.len() < 2 {
+                continue;
+            }
+            for at_last in [true, false] {
+                let end = if at_last {
+                    curve.points[curve.points.len() - 1]
+                } else {
+                    curve.points[0]
+                };
+                grid.cells
+                    .entry(grid.cell_of(end))
+                    .or_default()
+                    .push((c, at_last));
+            }
+        }
+        grid
+    }
+
+    fn cell_of(&self, p: Point) -> (i64, i64) {
+        (
+            (p.x / self.cell).floor() as i64,
+            (p.y / self.cell).floor() as i64,
+        )
+    }
+}
+
+/// The point `distance` back along `points` from its last point (`from_last`) or its first.
+fn point_back_along(points: &[Point], from_last: bool, distance: f64) -> Point {
+    let mut left = distance;
+    let n = points.len();
+    let at = |k: usize| {
+        if from_last {
+            points[n - 1 - k]
+        } else {
+            points[k]
+        }
+    };
+    for k in 1..n {
+        let (a, b) = (at(k - 1), at(k));
+        let step = a.distance(b);
+        if step >= left && step > 0.0 {
+            return a.lerp(b, left / step);
+        }
+        left -= step;
+    }
+    at(n - 1)
+}
+
 impl NeckSearch<'_> {
+    /// The open curves' ends within a cell of the neck's points, in the order of the curves
+    /// (last point first).
+    fn arm_ends_near(&self, neck: &[Point]) -> Vec<(usize, bool)> {
+        let mut cells: HashSet<(i64, i64)> = HashSet::new();
+        for &p in neck {
+            let (x, y) = self.ends.cell_of(p);
+            for dx in -1..=1 {
+                for dy in -1..=1 {
+                    cells.insert((x + dx, y + dy));
+                }
+            }
+        }
+        let mut near: Vec<(usize, bool)> = cells
+            .iter()
+            .filter_map(|cell| self.ends.cells.get(cell))
+            .flatten()
+            .copied()
+            .collect();
+        near.sort_by_key(|&(c, at_last)| (c, !at_last));
+        near.dedup();
+        near
+    }
+
     /// The first open curve whose end joins `neck` (the tail read from the knot) and goes on along
     /// it towards the knot ([`thread_loops_through_shared_necks`]).
     fn arm_joining(&self, neck: &[Point]) -> Option<NeckJoin> {
@@ -298,25 +385,22 @@ impl NeckSearch<'_> {
         let total = along[along.len() - 1];
         let min_neck = NECK_MIN_IN_PEN_WIDTHS * self.stroke_width;
         let max_turn = NECK_MAX_TURN_DEGREES.to_radians();
-        for (arm, curve) in self.curves.iter().enumerate() {
-            if arm == self.tail
-                || self.used[arm]
-                || self.is_band[arm]
-                || curve.closed
-                || curve.points.len() < 2
-            {
+        for (arm, at_last) in self.arm_ends_near(neck) {
+            let curve = &self.curves[arm];
+            if arm == self.tail || self.used[arm] {
                 continue;
             }
-            for at_last in [true, false] {
-                let mut points = curve.points.clone();
-                if !at_last {
-                    points.reverse();
-                }
-                let end = points[points.len() - 1];
-                let behind = {
-                    let reversed: Vec<Point> = points.iter().rev().copied().collect();
-                    point_at_length(&reversed, ARM_DIRECTION_IN_PEN_WIDTHS * self.stroke_width)
+            {
+                let end = if at_last {
+                    curve.points[curve.points.len() - 1]
+                } else {
+                    curve.points[0]
                 };
+                let behind = point_back_along(
+                    &curve.points,
+                    at_last,
+                    ARM_DIRECTION_IN_PEN_WIDTHS * self.stroke_width,
+                );
                 let incoming = end - behind;
                 if incoming.hypot() == 0.0 {
                     continue;
