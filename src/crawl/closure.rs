@@ -32,6 +32,7 @@ const SAME_WAY_COSINE: f64 = std::f64::consts::FRAC_1_SQRT_2;
 /// loop (farther along it than twice that reach) within that reach. Two lines side by side
 /// sealed at both ends have such a stretch only at each of their two round ends (about one reach
 /// on each side of each end: four in all); an animal's body or a palm has hundreds of pixels.
+/// Measured on the benchmark: 4 to 12 reaches judge every drawing of the four splits alike.
 const BODY_MIN_UNBACKED_IN_REACHES: f64 = 8.0;
 
 /// Joins free ends of open chains that stop side by side (see the module documentation), adding
