@@ -1071,13 +1071,9 @@ mod tests {
         assert!(curves.iter().all(|c| !c.closed));
     }
 
-    #[test]
-    fn a_band_cut_off_at_its_base_goes_out_and_back_from_the_outline() {
-        // A closed outline (a square of side 100) and, 6 px right of its right side, a dash
-        // 40 px long standing out from it: a finger whose sides merged into one band of ink,
-        // the pen lifted at its base. Marked wide, it is spliced into the outline, out to its
-        // tip and back; a dash one pen wide (a sun's ray) stays a curve of its own.
-        let square = Stroke {
+    /// A closed square outline of side 100 with its corner at the origin, drawn in one stroke.
+    fn closed_square() -> Stroke {
+        Stroke {
             line: Polyline::new(
                 [(0.0, 0.0), (100.0, 0.0), (100.0, 100.0), (0.0, 100.0)]
                     .into_iter()
@@ -1087,7 +1083,16 @@ mod tests {
             ),
             ends: [StrokeEnd::Free, StrokeEnd::Free],
             wide: false,
-        };
+        }
+    }
+
+    #[test]
+    fn a_band_cut_off_at_its_base_goes_out_and_back_from_the_outline() {
+        // A closed outline (a square of side 100) and, 6 px right of its right side, a dash
+        // 40 px long standing out from it: a finger whose sides merged into one band of ink,
+        // the pen lifted at its base. Marked wide, it is spliced into the outline, out to its
+        // tip and back; a dash one pen wide (a sun's ray) stays a curve of its own.
+        let square = closed_square();
         for wide in [true, false] {
             let dash = Stroke {
                 wide,
@@ -1115,17 +1120,6 @@ mod tests {
         // a band), a 6 px pen lift, and the wide dash beyond it. The stub and the dash are one
         // band, spliced into the outline out to the tip and back. A stub of 24 px (8 pen widths)
         // is a line of its own, which the strokes stage would have measured: nothing is spliced.
-        let outline = |x: f64| Stroke {
-            line: Polyline::new(
-                [(0.0, 0.0), (x, 0.0), (x, 100.0), (0.0, 100.0)]
-                    .into_iter()
-                    .map(Point::from)
-                    .collect(),
-                true,
-            ),
-            ends: [StrokeEnd::Free, StrokeEnd::Free],
-            wide: false,
-        };
         for stub in [12.0, 24.0] {
             let junction = Point::new(100.0, 50.0);
             let stub_stroke = Stroke {
@@ -1137,7 +1131,7 @@ mod tests {
                 ..open(&line((106.0 + stub, 50.0), (146.0 + stub, 50.0)))
             };
             let strokes =
-                crate::strokes::sample_strokes(&[outline(100.0), stub_stroke, dash], 4.0, 0.5);
+                crate::strokes::sample_strokes(&[closed_square(), stub_stroke, dash], 4.0, 0.5);
             let curves = connect(&strokes, Method::Strokes, 4.0, 3.0);
             let closed_reaching_tip = curves
                 .iter()
