@@ -1,9 +1,11 @@
-//! Closing outlines across the ends left side by side: once the gap bridges are chosen, two free
-//! ends that stop beside each other, pointing the same way (the foot of a leg, the end of a
-//! finger or a tail whose pen lift falls at its tip), are joined where that closes an outline
-//! that holds a body, and left apart where it would only seal two lines drawn side by side.
-//! The global closure prior of issue 9 ("an outline of a solid closes"), on top of the stroke
-//! crawl of [`super::strokes`] (Parakkat & Muthuganapathy 2016 decide closing by the chain alone).
+//! Closure judged over the whole outline, once the gap bridges are chosen (issue 9's prior: "an
+//! outline of a solid closes"). Two free ends that stop beside each other, pointing the same way
+//! (the foot of a leg, the end of a finger or a tail whose pen lift falls at its tip), are joined
+//! where that closes an outline that holds a body, and left apart where it would only seal two
+//! lines drawn side by side ([`close_across_side_by_side_ends`]). A closed loop whose tail is
+//! joined near the knot by a second line going on along it is one open curve through that shared
+//! neck twice, a lasso ([`thread_loops_through_shared_necks`]). On top of the stroke crawl of
+//! [`super::strokes`]; Parakkat & Muthuganapathy (2016) decide closing by each chain alone.
 
 use std::collections::{HashMap, HashSet};
 
