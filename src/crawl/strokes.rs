@@ -1555,6 +1555,47 @@ mod tests {
         );
     }
 
+    #[test]
+    fn a_k_whose_shallow_arm_meets_a_broken_stem_at_a_junction_keeps_its_stem() {
+        // A "K" whose arm leaves the stem at only 35° (a turn of 35° where thinning joined the
+        // arm and the lower stem in one stroke), the stem broken 8 px above that junction, and a
+        // stub of the leg left at the junction (a T-end there), the rest of the leg beyond a pen
+        // lift. Beside it, a line with two 6 px gaps sets the hand's gap. The junction's stub
+        // says four lines meet there: the stem goes on through the shallow corner, and the arm
+        // goes on into the stub and the leg.
+        let (sin, cos) = 35f64.to_radians().sin_cos();
+        let arm_top = (40.0 * sin, 40.0 - 40.0 * cos);
+        let mut arm_and_stem = line(arm_top, (0.0, 40.0));
+        arm_and_stem.extend(&line((0.0, 40.0), (0.0, 80.0))[1..]);
+        let (leg_sin, leg_cos) = 40f64.to_radians().sin_cos();
+        let along_leg = |d: f64| (d * leg_sin, 40.0 + d * leg_cos);
+        let stub = Stroke {
+            ends: [StrokeEnd::Attached(Point::new(0.0, 40.0)), StrokeEnd::Free],
+            ..open(&line((0.0, 40.0), along_leg(6.0)))
+        };
+        let strokes = vec![
+            open(&line((0.0, 0.0), (0.0, 32.0))),
+            open(&arm_and_stem),
+            stub,
+            open(&line(along_leg(12.0), along_leg(45.0))),
+            open(&line((100.0, 0.0), (100.0, 30.0))),
+            open(&line((100.0, 36.0), (100.0, 66.0))),
+            open(&line((100.0, 72.0), (100.0, 100.0))),
+        ];
+        let curves = connect(&strokes, Method::Strokes, 3.0, 2.0);
+        assert_eq!(curves.len(), 3, "{curves:?}");
+        assert!(
+            has_straight_curve(&curves, (0.0, 0.0), (0.0, 80.0)),
+            "{curves:?}"
+        );
+        assert!(
+            curves
+                .iter()
+                .any(|c| runs_between(c, arm_top, along_leg(45.0), 3.0)),
+            "{curves:?}"
+        );
+    }
+
     /// Traces `strokes` (a thin pen) and checks that they come out as two curves, one along
     /// y = 0 and one along y = 3.
     fn assert_one_curve_along_each_line(strokes: &[Stroke]) {
