@@ -21,7 +21,10 @@ use super::bridges::{
     match_gap_bridges, BridgeableEnd, GapBridges, BRIDGE_MAX_IN_TYPICAL_GAPS,
     MAX_STRAIGHT_TURN_DEGREES,
 };
-use super::closure::{close_across_side_by_side_ends, thread_loops_through_shared_necks};
+use super::closure::{
+    close_across_side_by_side_ends, join_holes_touching_their_outline,
+    thread_loops_through_shared_necks,
+};
 use super::reconstruct::{self, canonical_orientation, Reconstruction};
 use super::through::angle;
 use super::ReconstructError;
@@ -408,6 +411,7 @@ pub fn connect_strokes(strokes: &[Stroke], spacing: f64, stroke_width: f64) -> V
     let bridge_reach = BRIDGE_MAX_IN_TYPICAL_GAPS * typical_gap + stroke_width;
     let (curves, is_band) =
         thread_loops_through_shared_necks(curves, is_band, stroke_width, bridge_reach);
+    let (curves, is_band) = join_holes_touching_their_outline(curves, is_band, stroke_width);
     splice_lone_bands(curves, &is_band, stroke_width)
 }
 
