@@ -136,7 +136,7 @@ fn stands_on(
 }
 
 /// The point `distance` back along `points` from its first (or last) point.
-fn point_back_from(points: &[Point], from_last: bool, distance: f64) -> Point {
+pub(super) fn point_back_from(points: &[Point], from_last: bool, distance: f64) -> Point {
     if from_last {
         let reversed: Vec<Point> = points.iter().rev().copied().collect();
         point_at_length(&reversed, distance)

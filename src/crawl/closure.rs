@@ -11,7 +11,7 @@ use std::collections::{HashMap, HashSet};
 
 use kurbo::{Line, ParamCurve, ParamCurveNearest, Point, Vec2};
 
-use super::bands::{Foot, SegmentGrid};
+use super::bands::{point_back_from, Foot, SegmentGrid};
 use super::bridges::BridgeableEnd;
 use super::strokes::{components, StrokeVertices};
 use super::through::angle;
@@ -123,7 +123,10 @@ pub(super) fn close_across_side_by_side_ends(
             continue;
         }
         let points: Vec<Point> = order.iter().map(|&v| positions[v as usize]).collect();
-        if holds_a_body(&densified(&points, 0.25 * reach), reach) {
+        // Points along the bridges too (a bridge across a gap has no samples of its own), so
+        // that no stretch is missed between two samples.
+        let dense = Polyline::new(points, true).resample(0.25 * reach).points;
+        if holds_a_body(&dense, reach) {
             kept.extend(closing.iter().map(|&(u, v)| (u.min(v), u.max(v))));
         }
     }
@@ -166,19 +169,6 @@ fn holds_a_body(points: &[Point], reach: f64) -> bool {
         }
     }
     unbacked >= BODY_MIN_UNBACKED_IN_REACHES * reach
-}
-
-/// The closed loop of `points` with points added along every edge longer than `step` (a bridge
-/// across a gap has no samples of its own), so that no stretch is missed between two samples.
-fn densified(points: &[Point], step: f64) -> Vec<Point> {
-    let n = points.len();
-    let mut dense = Vec::with_capacity(n);
-    for k in 0..n {
-        let (a, b) = (points[k], points[(k + 1) % n]);
-        let pieces = (a.distance(b) / step).ceil().max(1.0) as usize;
-        dense.extend((0..pieces).map(|i| a.lerp(b, i as f64 / pieces as f64)));
-    }
-    dense
 }
 
 /// A loop's neck is at least this long (pen widths) between the knot and the junction where the
@@ -343,28 +333,6 @@ impl EndGrid {
     }
 }
 
-/// The point `distance` back along `points` from its last point (`from_last`) or its first.
-fn point_back_along(points: &[Point], from_last: bool, distance: f64) -> Point {
-    let mut left = distance;
-    let n = points.len();
-    let at = |k: usize| {
-        if from_last {
-            points[n - 1 - k]
-        } else {
-            points[k]
-        }
-    };
-    for k in 1..n {
-        let (a, b) = (at(k - 1), at(k));
-        let step = a.distance(b);
-        if step >= left && step > 0.0 {
-            return a.lerp(b, left / step);
-        }
-        left -= step;
-    }
-    at(n - 1)
-}
-
 impl NeckSearch<'_> {
     /// The open curves' ends within a cell of the neck's points, in the order of the curves
     /// (last point first).
@@ -410,7 +378,7 @@ impl NeckSearch<'_> {
                 } else {
                     curve.points[0]
                 };
-                let behind = point_back_along(
+                let behind = point_back_from(
                     &curve.points,
                     at_last,
                     ARM_DIRECTION_IN_PEN_WIDTHS * self.stroke_width,
@@ -599,12 +567,10 @@ pub(super) fn join_holes_touching_their_outline(
             }
             let contacts = &touching[&outer];
             let outline = &curves[outer];
-            let run: f64 = {
-                let mut ks: Vec<usize> = contacts.iter().map(|c| c.0).collect();
-                ks.sort_unstable();
-                ks.dedup();
-                ks.len() as f64 * mean_step(&inner.points)
-            };
+            // The share of the hole's samples (about evenly spaced) that touch the outline.
+            let mut touching_samples: Vec<usize> = contacts.iter().map(|c| c.0).collect();
+            touching_samples.sort_unstable();
+            touching_samples.dedup();
             let inside = inner
                 .points
                 .iter()
@@ -614,8 +580,8 @@ pub(super) fn join_holes_touching_their_outline(
                         .all(|c| inner.points[c.0].distance(**p) > 2.0 * touch)
                 })
                 .all(|&p| contains(&outline.points, p));
-            let hole_length = mean_step(&inner.points) * inner.points.len() as f64;
-            if run > HOLE_TOUCH_MAX_SHARE * hole_length || !inside {
+            let share = touching_samples.len() as f64 / inner.points.len() as f64;
+            if share > HOLE_TOUCH_MAX_SHARE || !inside {
                 continue;
             }
             let &(k, j, _) = contacts
@@ -640,15 +606,6 @@ pub(super) fn join_holes_touching_their_outline(
         }
     }
     with_replacements(curves, is_band, &used, joined)
-}
-
-/// The mean distance between consecutive points of a closed curve.
-fn mean_step(points: &[Point]) -> f64 {
-    let n = points.len();
-    (0..n)
-        .map(|k| points[k].distance(points[(k + 1) % n]))
-        .sum::<f64>()
-        / n.max(1) as f64
 }
 
 /// Twice the signed area of a closed polygon (positive counter-clockwise in y-up axes).

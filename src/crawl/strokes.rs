@@ -426,29 +426,23 @@ const BAND_STUB_MAX_IN_PEN_WIDTHS: f64 = 6.0;
 /// most `stub_max` bridged to it at one end: see
 /// [`BAND_STUB_MAX_IN_PEN_WIDTHS`].
 fn band_with_stub(chain: &Chain, stroke: &[u32], positions: &[Point], stub_max: f64) -> bool {
-    let n = chain.vertices.len();
-    if stroke.len() > n {
+    let (n, m) = (chain.vertices.len(), stroke.len());
+    if m > n {
         return false;
     }
-    let rest = n - stroke.len();
-    let at_front = stroke.contains(&chain.vertices[0]);
-    let band_end = if at_front { stroke.len() - 1 } else { rest };
-    let in_band = |k: usize| {
-        if at_front {
-            k <= band_end
-        } else {
-            k >= band_end
-        }
+    // The chain's positions the stroke takes at its end, and the stub's.
+    let (band, stub) = if stroke.contains(&chain.vertices[0]) {
+        (0..m, m..n)
+    } else {
+        (n - m..n, 0..n - m)
     };
-    // The chain holds the stroke whole, at one end.
-    if !(0..n)
-        .filter(|&k| in_band(k))
+    if !band
+        .into_iter()
         .all(|k| stroke.contains(&chain.vertices[k]))
     {
         return false;
     }
-    let stub: Vec<Point> = (0..n)
-        .filter(|&k| !in_band(k))
+    let stub: Vec<Point> = stub
         .map(|k| positions[chain.vertices[k] as usize])
         .collect();
     polyline_length(&stub, false) <= stub_max
@@ -1528,23 +1522,25 @@ mod tests {
         assert!(curves[0].closed, "{curves:?}");
     }
 
-    #[test]
-    fn a_k_whose_stem_is_broken_where_its_arms_meet_keeps_arm_and_leg_together() {
-        // A "K" on a 2-px pen: the stem's upper half stops 8 px above where the arm meets it,
-        // the arm runs on into the stem's lower half (one stroke, a corner), and the leg starts
-        // 6 px from that corner. Beside it, a line with two 6 px gaps sets the hand's gap. The
-        // stem goes on through the corner; the arm, cut off it, goes on to the leg: the stem and
-        // the "<" are two curves.
-        let mut arm_and_stem = line((40.0, 12.0), (0.0, 40.0));
+    /// Traces a "K" on a 2-px pen whose stem is broken 8 px above the junction at (0, 40): the
+    /// stem's upper half, the arm from `arm_top` run on into the stem's lower half (one stroke, a
+    /// corner), and the strokes of the `leg`, beside a line with two 6 px gaps that sets the
+    /// hand's gap. Checks that the stem and the arm with its leg (ending at `leg_end`) come out
+    /// as two curves.
+    fn assert_k_keeps_stem_and_arm_with_leg(
+        arm_top: (f64, f64),
+        leg: Vec<Stroke>,
+        leg_end: (f64, f64),
+    ) {
+        let mut arm_and_stem = line(arm_top, (0.0, 40.0));
         arm_and_stem.extend(&line((0.0, 40.0), (0.0, 80.0))[1..]);
-        let strokes = vec![
-            open(&line((0.0, 0.0), (0.0, 32.0))),
-            open(&arm_and_stem),
-            open(&line((3.0, 45.0), (30.0, 80.0))),
+        let mut strokes = vec![open(&line((0.0, 0.0), (0.0, 32.0))), open(&arm_and_stem)];
+        strokes.extend(leg);
+        strokes.extend([
             open(&line((100.0, 0.0), (100.0, 30.0))),
             open(&line((100.0, 36.0), (100.0, 66.0))),
             open(&line((100.0, 72.0), (100.0, 100.0))),
-        ];
+        ]);
         let curves = connect(&strokes, Method::Strokes, 3.0, 2.0);
         assert_eq!(curves.len(), 3, "{curves:?}");
         assert!(
@@ -1554,49 +1550,41 @@ mod tests {
         assert!(
             curves
                 .iter()
-                .any(|c| runs_between(c, (40.0, 12.0), (30.0, 80.0), 3.0)),
+                .any(|c| runs_between(c, arm_top, leg_end, 3.0)),
             "{curves:?}"
         );
     }
 
     #[test]
+    fn a_k_whose_stem_is_broken_where_its_arms_meet_keeps_arm_and_leg_together() {
+        // The arm leaves the stem at 55°, and the leg starts 6 px from the corner. The stem goes
+        // on through the corner; the arm, cut off it, goes on to the leg: the stem and the "<"
+        // are two curves.
+        assert_k_keeps_stem_and_arm_with_leg(
+            (40.0, 12.0),
+            vec![open(&line((3.0, 45.0), (30.0, 80.0)))],
+            (30.0, 80.0),
+        );
+    }
+
+    #[test]
     fn a_k_whose_shallow_arm_meets_a_broken_stem_at_a_junction_keeps_its_stem() {
-        // A "K" whose arm leaves the stem at only 35° (a turn of 35° where thinning joined the
-        // arm and the lower stem in one stroke), the stem broken 8 px above that junction, and a
-        // stub of the leg left at the junction (a T-end there), the rest of the leg beyond a pen
-        // lift. Beside it, a line with two 6 px gaps sets the hand's gap. The junction's stub
-        // says four lines meet there: the stem goes on through the shallow corner, and the arm
-        // goes on into the stub and the leg.
+        // The arm leaves the stem at only 35° (a turn of 35° where thinning joined the arm and
+        // the lower stem in one stroke), and a stub of the leg is left at the junction (a T-end
+        // there), the rest of the leg beyond a pen lift. The junction's stub says four lines
+        // meet there: the stem goes on through the shallow corner, and the arm goes on into the
+        // stub and the leg.
         let (sin, cos) = 35f64.to_radians().sin_cos();
-        let arm_top = (40.0 * sin, 40.0 - 40.0 * cos);
-        let mut arm_and_stem = line(arm_top, (0.0, 40.0));
-        arm_and_stem.extend(&line((0.0, 40.0), (0.0, 80.0))[1..]);
         let (leg_sin, leg_cos) = 40f64.to_radians().sin_cos();
         let along_leg = |d: f64| (d * leg_sin, 40.0 + d * leg_cos);
         let stub = Stroke {
             ends: [StrokeEnd::Attached(Point::new(0.0, 40.0)), StrokeEnd::Free],
             ..open(&line((0.0, 40.0), along_leg(6.0)))
         };
-        let strokes = vec![
-            open(&line((0.0, 0.0), (0.0, 32.0))),
-            open(&arm_and_stem),
-            stub,
-            open(&line(along_leg(12.0), along_leg(45.0))),
-            open(&line((100.0, 0.0), (100.0, 30.0))),
-            open(&line((100.0, 36.0), (100.0, 66.0))),
-            open(&line((100.0, 72.0), (100.0, 100.0))),
-        ];
-        let curves = connect(&strokes, Method::Strokes, 3.0, 2.0);
-        assert_eq!(curves.len(), 3, "{curves:?}");
-        assert!(
-            has_straight_curve(&curves, (0.0, 0.0), (0.0, 80.0)),
-            "{curves:?}"
-        );
-        assert!(
-            curves
-                .iter()
-                .any(|c| runs_between(c, arm_top, along_leg(45.0), 3.0)),
-            "{curves:?}"
+        assert_k_keeps_stem_and_arm_with_leg(
+            (40.0 * sin, 40.0 - 40.0 * cos),
+            vec![stub, open(&line(along_leg(12.0), along_leg(45.0)))],
+            along_leg(45.0),
         );
     }
 

@@ -291,7 +291,8 @@ type TurnAt = (f64, [Vec2; 2], [Point; 2]);
 /// The sharp corners of every stroke: vertices where the stroke turns by more than
 /// [`MIN_CORNER_TURN_DEGREES`] between its arms measured `arm` away (by more than
 /// [`MIN_CORNER_TURN_AT_JUNCTION_DEGREES`] at a vertex beside one of the `junctions`, where
-/// T-ends end), the sharpest of each run of such vertices. Both arms must reach `arm`; a closed stroke's corners may lie anywhere on it.
+/// T-ends end), the sharpest of each run of such vertices. Both arms must reach `arm`; a closed
+/// stroke's corners may lie anywhere on it.
 fn find_corners(
     vertices: &StrokeVertices,
     arm: f64,
