@@ -1165,6 +1165,39 @@ mod tests {
     }
 
     #[test]
+    fn a_zigzag_whose_gap_takes_a_whole_side_is_bridged_by_a_step() {
+        // A square zigzag, 8 px high, with the pen lifted over one whole falling side: the upper
+        // piece ends on the crest pointing right, the lower one starts in the trough 1.5 px
+        // further left (its tip ran a little past), pointing left. No straight bridge, corner
+        // or cusp fits; the step joins them although each end lies a little behind the other.
+        let upper = [
+            (-60.0, 8.0),
+            (-54.0, 0.0),
+            (-40.0, 0.0),
+            (-34.0, 8.0),
+            (-20.0, 8.0),
+            (-14.0, 0.0),
+            (0.0, 0.0),
+        ];
+        let lower = [
+            (-1.5, 8.0),
+            (12.0, 8.0),
+            (18.0, 0.0),
+            (32.0, 0.0),
+            (38.0, 8.0),
+            (52.0, 8.0),
+            (58.0, 0.0),
+            (72.0, 0.0),
+        ];
+        let curves = connect(&[open(&upper), open(&lower)], Method::Strokes, 4.0, 3.0);
+        assert_eq!(curves.len(), 1, "{curves:?}");
+        assert!(
+            runs_between(&curves[0], (-60.0, 8.0), (72.0, 0.0), 2.0),
+            "{curves:?}"
+        );
+    }
+
+    #[test]
     fn a_spike_whose_side_stops_short_of_the_tip_turns_back_there() {
         // A narrow spike on a base line: its sides run 5 px apart (1.7 pen widths) up to where
         // the right side stops, 11 px short of the tip (the pen lifted on that side there), its
