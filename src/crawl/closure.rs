@@ -688,22 +688,26 @@ mod tests {
 
     #[test]
     fn a_leg_whose_foot_falls_in_a_pen_lift_closes_the_body() {
-        // A square body with one leg 8 px wide (a 3 px pen) below it, drawn in one stroke that
-        // starts down the leg's right side and ends down its left side: the foot is a pen lift,
-        // the two ends stop side by side. The outline of the body closes across it.
-        let strokes = [stroke_through(&[
-            (108.0, 160.0),
-            (108.0, 100.0),
-            (160.0, 100.0),
-            (160.0, 0.0),
-            (40.0, 0.0),
-            (40.0, 100.0),
-            (100.0, 100.0),
-            (100.0, 160.0),
-        ])];
-        let curves = connect(&strokes, Method::Strokes, 3.0, 3.0);
-        assert_eq!(curves.len(), 1, "{curves:?}");
-        assert!(curves[0].closed, "{curves:?}");
+        // A square body with one leg below it, drawn in one stroke that starts down the leg's
+        // right side and ends down its left side (a 3 px pen): the foot is a pen lift, the two
+        // ends stop side by side. The outline of the body closes across a leg 8 or 15 px wide
+        // (2.7 and 5 widths of the stroke), not across one 19 px wide (6.3 widths: two lines'
+        // ends too far apart).
+        for (width, closes) in [(8.0, true), (15.0, true), (19.0, false)] {
+            let strokes = [stroke_through(&[
+                (100.0 + width, 160.0),
+                (100.0 + width, 100.0),
+                (160.0, 100.0),
+                (160.0, 0.0),
+                (40.0, 0.0),
+                (40.0, 100.0),
+                (100.0, 100.0),
+                (100.0, 160.0),
+            ])];
+            let curves = connect(&strokes, Method::Strokes, 3.0, 3.0);
+            assert_eq!(curves.len(), 1, "{curves:?}");
+            assert_eq!(curves[0].closed, closes, "leg {width} px: {curves:?}");
+        }
     }
 
     #[test]
@@ -728,27 +732,6 @@ mod tests {
         let curves = connect(&strokes, Method::Strokes, 3.0, 2.0);
         assert_eq!(curves.len(), 1, "{curves:?}");
         assert!(curves[0].closed, "{curves:?}");
-    }
-
-    #[test]
-    fn a_wide_leg_closes_the_body_up_to_five_and_a_half_stroke_widths_across() {
-        // The same body and leg, the leg 15 px wide (5 widths of the 3 px stroke) and then 19
-        // px (6.3 widths): the first foot closes, the second is two lines' ends too far apart.
-        for (width, closes) in [(15.0, true), (19.0, false)] {
-            let strokes = [stroke_through(&[
-                (100.0 + width, 160.0),
-                (100.0 + width, 100.0),
-                (160.0, 100.0),
-                (160.0, 0.0),
-                (40.0, 0.0),
-                (40.0, 100.0),
-                (100.0, 100.0),
-                (100.0, 160.0),
-            ])];
-            let curves = connect(&strokes, Method::Strokes, 3.0, 3.0);
-            assert_eq!(curves.len(), 1, "{curves:?}");
-            assert_eq!(curves[0].closed, closes, "leg {width} px: {curves:?}");
-        }
     }
 
     #[test]
