@@ -104,6 +104,26 @@ fn end_direction(points: &[Point], reach: f64, skip: f64) -> Option<(Vec2, f64)>
     Some((direction, bend))
 }
 
+/// How far back from an end (in sample spacings) each of the two chords reaches whose turn is
+/// the stroke's curving there ([`stroke_curving`]).
+const CURVING_REACH_IN_SPACINGS: f64 = 2.0;
+
+/// The turn (radians, counter-clockwise positive, in the pen's direction towards the end)
+/// between the stroke's chord over `reach` from its end at `points[0]` and the chord over the
+/// `reach` before that; 0 for a stroke shorter than two reaches.
+fn stroke_curving(points: &[Point], reach: f64) -> f64 {
+    if polyline_length(points, false) < 2.0 * reach {
+        return 0.0;
+    }
+    let (end, near, far) = (
+        points[0],
+        point_at_length(points, reach),
+        point_at_length(points, 2.0 * reach),
+    );
+    let (previous, chord) = (near - far, end - near);
+    previous.cross(chord).atan2(previous.dot(chord))
+}
+
 /// The point `length` along the polyline from its first point (its last point if it is shorter).
 pub(super) fn point_at_length(points: &[Point], length: f64) -> Point {
     let mut left = length;
@@ -323,7 +343,17 @@ impl StrokeGraph {
                 end_direction(&along, reach, skip),
                 end_direction(&reversed, reach, skip),
             ];
-            for ((end, vertex), direction) in stroke.ends.iter().zip([first, last]).zip(outward) {
+            let curving = [
+                stroke_curving(&along, CURVING_REACH_IN_SPACINGS * spacing),
+                stroke_curving(&reversed, CURVING_REACH_IN_SPACINGS * spacing),
+            ];
+            for (((end, vertex), direction), curving) in stroke
+                .ends
+                .iter()
+                .zip([first, last])
+                .zip(outward)
+                .zip(curving)
+            {
                 let (at, attached) = match *end {
                     StrokeEnd::Free => (positions[vertex as usize], false),
                     StrokeEnd::Attached(junction) => (junction, true),
@@ -333,6 +363,7 @@ impl StrokeGraph {
                     stroke: s,
                     outward: direction.map(|(outward, _)| outward),
                     bend: direction.map_or(0.0, |(_, bend)| bend),
+                    curving,
                     at,
                     attached,
                 });
