@@ -235,7 +235,9 @@ fn recover_apex(
     };
     let steps = ((MAX_APEX_WALK_BACK_IN_PEN_WIDTHS * stroke_width).min(shift) / INK_CHECK_STEP_PX)
         .floor() as usize;
-    let apex = (0..steps)
+    // The lines' meeting itself is always tried first, however short the shift (`steps` is 0
+    // below half a pixel).
+    let apex = (0..steps.max(1))
         .map(|k| here.lerp(apex, 1.0 - k as f64 / (shift / INK_CHECK_STEP_PX)))
         .find(|&apex| in_ink(apex))?;
     Some(Tip {
