@@ -16,6 +16,7 @@ use super::bands::{point_back_from, Foot, SegmentGrid};
 use super::bridges::BridgeableEnd;
 use super::strokes::{components, StrokeVertices};
 use super::through::angle;
+use crate::geometry::polyline::polyline_length;
 use crate::geometry::Polyline;
 
 /// DECISION: two free ends side by side are at most this far apart (centre to centre, in widths
@@ -629,9 +630,7 @@ pub(super) fn join_holes_touching_their_outline(
 /// The roundness 4πA / P² of the closed polygon `points`: 1 for a circle, less for any other
 /// shape.
 fn roundness(points: &[Point]) -> f64 {
-    let perimeter = (0..points.len())
-        .map(|k| points[k].distance(points[(k + 1) % points.len()]))
-        .sum::<f64>();
+    let perimeter = polyline_length(points, true);
     if perimeter == 0.0 {
         return 0.0;
     }
