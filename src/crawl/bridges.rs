@@ -12,6 +12,7 @@ use kurbo::{Point, Vec2};
 
 use super::strokes::{point_key, PointKey, StrokeVertices};
 use super::through::{angle, through_candidates, ThroughCandidate, ThroughCorner};
+use crate::geometry::grid::PointGrid;
 use crate::geometry::polyline::{distance_to_segment, polyline_length};
 use crate::geometry::UnionFind;
 use crate::strokes::MIN_LOOP_SAMPLES;
@@ -641,22 +642,16 @@ impl<'a> Matching<'a> {
         let position = |v: u32| self.vertices.positions[v as usize];
         let mut result: Vec<&'a Candidate> = matched;
         // Bridges are no longer than `reach`: crossing ones have their midpoints within it.
-        let cell = |c: &Candidate| {
-            let m = position(c.a).midpoint(position(c.b));
-            ((m.x / reach).floor() as i64, (m.y / reach).floor() as i64)
-        };
-        let mut grid: HashMap<(i64, i64), Vec<usize>> = HashMap::new();
+        let middle = |c: &Candidate| position(c.a).midpoint(position(c.b));
+        let mut grid = PointGrid::new(reach);
         for (k, c) in result.iter().enumerate() {
             if rearrangeable.contains(c) {
-                grid.entry(cell(c)).or_default().push(k);
+                grid.insert(middle(c), k);
             }
         }
         for i in 0..result.len() {
-            let (cx, cy) = cell(result[i]);
-            let mut near: Vec<usize> = (-1..=1)
-                .flat_map(|dx| (-1..=1).map(move |dy| (cx + dx, cy + dy)))
-                .filter_map(|key| grid.get(&key))
-                .flatten()
+            let mut near: Vec<usize> = grid
+                .around(middle(result[i]))
                 .copied()
                 .filter(|&j| j > i)
                 .collect();

@@ -16,6 +16,7 @@ use super::bands::{point_back_from, Foot, SegmentGrid};
 use super::bridges::BridgeableEnd;
 use super::strokes::{components, StrokeVertices};
 use super::through::angle;
+use crate::geometry::grid::PointGrid;
 use crate::geometry::polyline::polyline_length;
 use crate::geometry::Polyline;
 
@@ -163,25 +164,17 @@ fn holds_a_body(points: &[Point], reach: f64) -> bool {
         along.push(total);
         total += points[k].distance(points[(k + 1) % n]);
     }
-    let cell = |p: Point| ((p.x / reach).floor() as i64, (p.y / reach).floor() as i64);
-    let mut grid: HashMap<(i64, i64), Vec<usize>> = HashMap::new();
+    let mut grid = PointGrid::new(reach);
     for (k, &p) in points.iter().enumerate() {
-        grid.entry(cell(p)).or_default().push(k);
+        grid.insert(p, k);
     }
     let far_along = 2.0 * reach;
     let mut unbacked = 0.0;
     for k in 0..n {
         let p = points[k];
-        let (cx, cy) = cell(p);
-        let backed = (cx - 1..=cx + 1).any(|x| {
-            (cy - 1..=cy + 1).any(|y| {
-                grid.get(&(x, y)).is_some_and(|near| {
-                    near.iter().any(|&j| {
-                        let apart = (along[j] - along[k]).abs();
-                        apart.min(total - apart) > far_along && points[j].distance(p) <= reach
-                    })
-                })
-            })
+        let backed = grid.around(p).any(|&j| {
+            let apart = (along[j] - along[k]).abs();
+            apart.min(total - apart) > far_along && points[j].distance(p) <= reach
         });
         if !backed {
             unbacked += points[(k + 1) % n].distance(p);
@@ -226,7 +219,7 @@ pub(super) fn thread_loops_through_shared_necks(
         return (curves, is_band);
     }
     let grid = SegmentGrid::new(&curves, (4.0 * stroke_width).max(1.0));
-    let ends = EndGrid::new(&curves, &is_band, bridge_reach.max(1.0));
+    let ends = open_ends_grid(&curves, &is_band, bridge_reach.max(1.0));
     let mut used = vec![false; curves.len()];
     let mut threaded: HashMap<usize, Polyline> = HashMap::new();
     for tail in 0..curves.len() {
@@ -306,69 +299,39 @@ struct NeckSearch<'a> {
     curves: &'a [Polyline],
     used: &'a [bool],
     /// The ends of the open curves that may be arms, by cell of [`Self::bridge_reach`].
-    ends: &'a EndGrid,
+    ends: &'a PointGrid<(usize, bool)>,
     tail: usize,
     stroke_width: f64,
     bridge_reach: f64,
 }
 
-/// The ends of open curves (the curve, and whether it is its last point) in square cells.
-struct EndGrid {
-    cell: f64,
-    cells: HashMap<(i64, i64), Vec<(usize, bool)>>,
-}
-
-impl EndGrid {
-    /// The ends of the open curves of `curves` that are not bands.
-    fn new(curves: &[Polyline], is_band: &[bool], cell: f64) -> Self {
-        let mut grid = Self {
-            cell,
-            cells: HashMap::new(),
-        };
-        for (c, curve) in curves.iter().enumerate() {
-            if curve.closed || is_band[c] || curve.points.len() < 2 {
-                continue;
-            }
-            for at_last in [true, false] {
-                let end = if at_last {
-                    curve.points[curve.points.len() - 1]
-                } else {
-                    curve.points[0]
-                };
-                grid.cells
-                    .entry(grid.cell_of(end))
-                    .or_default()
-                    .push((c, at_last));
-            }
+/// The ends of the open curves of `curves` that are not bands (the curve, and whether it is its
+/// last point), in square cells `cell` wide.
+fn open_ends_grid(curves: &[Polyline], is_band: &[bool], cell: f64) -> PointGrid<(usize, bool)> {
+    let mut grid = PointGrid::new(cell);
+    for (c, curve) in curves.iter().enumerate() {
+        if curve.closed || is_band[c] || curve.points.len() < 2 {
+            continue;
         }
-        grid
+        for at_last in [true, false] {
+            let end = if at_last {
+                curve.points[curve.points.len() - 1]
+            } else {
+                curve.points[0]
+            };
+            grid.insert(end, (c, at_last));
+        }
     }
-
-    fn cell_of(&self, p: Point) -> (i64, i64) {
-        (
-            (p.x / self.cell).floor() as i64,
-            (p.y / self.cell).floor() as i64,
-        )
-    }
+    grid
 }
 
 impl NeckSearch<'_> {
     /// The open curves' ends within a cell of the neck's points, in the order of the curves
     /// (last point first).
     fn arm_ends_near(&self, neck: &[Point]) -> Vec<(usize, bool)> {
-        let mut cells: HashSet<(i64, i64)> = HashSet::new();
-        for &p in neck {
-            let (x, y) = self.ends.cell_of(p);
-            for dx in -1..=1 {
-                for dy in -1..=1 {
-                    cells.insert((x + dx, y + dy));
-                }
-            }
-        }
-        let mut near: Vec<(usize, bool)> = cells
+        let mut near: Vec<(usize, bool)> = neck
             .iter()
-            .filter_map(|cell| self.ends.cells.get(cell))
-            .flatten()
+            .flat_map(|&p| self.ends.around(p))
             .copied()
             .collect();
         near.sort_by_key(|&(c, at_last)| (c, !at_last));
@@ -547,12 +510,11 @@ pub(super) fn join_holes_touching_their_outline(
     if touch <= 0.0 {
         return (curves, is_band);
     }
-    let cell_of = |p: Point| ((p.x / touch).floor() as i64, (p.y / touch).floor() as i64);
-    let mut grid: HashMap<(i64, i64), Vec<(usize, usize)>> = HashMap::new();
+    let mut grid = PointGrid::new(touch);
     for (c, curve) in curves.iter().enumerate() {
         if curve.closed && curve.points.len() >= 3 {
             for (k, &p) in curve.points.iter().enumerate() {
-                grid.entry(cell_of(p)).or_default().push((c, k));
+                grid.insert(p, (c, k));
             }
         }
     }
@@ -566,15 +528,10 @@ pub(super) fn join_holes_touching_their_outline(
         // The other closed curves' vertices within `touch` of this one's, by curve.
         let mut touching: HashMap<usize, Vec<(usize, usize, f64)>> = HashMap::new();
         for (k, &p) in inner.points.iter().enumerate() {
-            let (cx, cy) = cell_of(p);
-            for x in cx - 1..=cx + 1 {
-                for y in cy - 1..=cy + 1 {
-                    for &(c, j) in grid.get(&(x, y)).into_iter().flatten() {
-                        let d = curves[c].points[j].distance(p);
-                        if c != hole && d <= touch {
-                            touching.entry(c).or_default().push((k, j, d));
-                        }
-                    }
+            for &(c, j) in grid.around(p) {
+                let d = curves[c].points[j].distance(p);
+                if c != hole && d <= touch {
+                    touching.entry(c).or_default().push((k, j, d));
                 }
             }
         }

@@ -12,6 +12,7 @@ use kurbo::{Point, Vec2};
 
 use super::bridges::{continuation_cost, BridgeableEnd};
 use super::strokes::StrokeVertices;
+use crate::geometry::grid::PointGrid;
 
 /// A corner of a stroke sharper than this (degrees of turn) may be where a broken line crosses
 /// it: the lines of a letter's crossings and junctions meet at 45° or more.
@@ -127,12 +128,9 @@ pub(super) fn through_candidates(
     }
     // A grid of cells `reach` wide, so that each end looks only at the corners in the cells
     // around it (a page of noise has hundreds of thousands of both).
-    let cell_of = |p: Point| ((p.x / reach).floor() as i64, (p.y / reach).floor() as i64);
-    let mut grid: HashMap<(i64, i64), Vec<usize>> = HashMap::new();
+    let mut grid = PointGrid::new(reach);
     for (index, corner) in corners.iter().enumerate() {
-        grid.entry(cell_of(vertices.positions[corner.vertex as usize]))
-            .or_default()
-            .push(index);
+        grid.insert(vertices.positions[corner.vertex as usize], index);
     }
     let max_turn = MAX_THROUGH_TURN_DEGREES.to_radians();
     let mut candidates = Vec::new();
@@ -140,13 +138,7 @@ pub(super) fn through_candidates(
         let Some(outward) = end.outward else {
             continue; // a dot has no line to go on with
         };
-        let (cx, cy) = cell_of(end.at);
-        let mut near: Vec<usize> = (cx - 1..=cx + 1)
-            .flat_map(|x| (cy - 1..=cy + 1).map(move |y| (x, y)))
-            .filter_map(|cell| grid.get(&cell))
-            .flatten()
-            .copied()
-            .collect();
+        let mut near: Vec<usize> = grid.around(end.at).copied().collect();
         near.sort_unstable();
         for corner in near.iter().map(|&index| &corners[index]) {
             let at = vertices.positions[corner.vertex as usize];
@@ -303,21 +295,11 @@ fn find_corners(
     let min_turn_at_junction = MIN_CORNER_TURN_AT_JUNCTION_DEGREES.to_radians();
     let near = (JUNCTION_NEAR_IN_PEN_WIDTHS * stroke_width).max(f64::MIN_POSITIVE);
     // The junctions in cells `near` wide (a page of noise has hundreds of thousands).
-    let cell_of = |p: Point| ((p.x / near).floor() as i64, (p.y / near).floor() as i64);
-    let mut by_cell: HashMap<(i64, i64), Vec<Point>> = HashMap::new();
+    let mut by_cell = PointGrid::new(near);
     for &junction in junctions {
-        by_cell.entry(cell_of(junction)).or_default().push(junction);
+        by_cell.insert(junction, junction);
     }
-    let at_junction = |p: Point| {
-        let (cx, cy) = cell_of(p);
-        (cx - 1..=cx + 1).any(|x| {
-            (cy - 1..=cy + 1).any(|y| {
-                by_cell
-                    .get(&(x, y))
-                    .is_some_and(|near_ones| near_ones.iter().any(|j| j.distance(p) <= near))
-            })
-        })
-    };
+    let at_junction = |p: Point| by_cell.around(p).any(|j| j.distance(p) <= near);
     let mut corners = Vec::new();
     for (stroke, of_stroke) in vertices.of_stroke.iter().enumerate() {
         let closed = vertices.closed[stroke];
