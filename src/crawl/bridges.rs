@@ -892,6 +892,8 @@ fn bridge_candidates(
     // The pairs of ends offered a cusp, both ways round.
     let mut cusps: HashSet<(u32, u32)> = HashSet::new();
     let ran_into = strokes_ran_into(vertices, ends);
+    let segments = StrokeSegments::new(spacing, stroke_width);
+    let mut band_partners: HashMap<u32, Option<usize>> = HashMap::new();
     for (a, b) in ends_within(ends, reach) {
         // DECISION: a T-end is never bridged to an end of the stroke it ran into: the T already
         // joins the two strokes, and the short overshoot of that stroke past the junction (a
@@ -954,13 +956,21 @@ fn bridge_candidates(
             }
             let alongside = shape.corner.map_or(0.0, |corner| {
                 let path = [a.at, corner, b.at];
-                alongside_length(vertices, &a, &b, path, stroke_width).max(alongside_length(
-                    vertices,
-                    &b,
-                    &a,
-                    path,
-                    stroke_width,
-                ))
+                let staggered = alongside_length(vertices, &a, &b, path, stroke_width)
+                    .max(alongside_length(vertices, &b, &a, path, stroke_width));
+                // A bridge shorter than this hides no stretch worth measuring.
+                if path[0].distance(corner) + corner.distance(path[2]) <= 2.0 * stroke_width {
+                    return staggered;
+                }
+                let mut along_partner = |end: &BridgeableEnd| {
+                    let partner = *band_partners
+                        .entry(end.vertex)
+                        .or_insert_with(|| segments.band_partner(vertices, end, stroke_width));
+                    partner.map_or(0.0, |stroke| {
+                        segments.along(vertices, stroke, path, stroke_width)
+                    })
+                };
+                staggered.max(along_partner(&a)).max(along_partner(&b))
             });
             candidates.push(Candidate {
                 cost: shape.cost,
@@ -1867,6 +1877,161 @@ fn alongside_length(
         }
     }
     covered
+}
+
+/// The segments between consecutive samples of every stroke, bucketed by their midpoints, to
+/// find the strokes that run near a point; bucketed when first asked (most pages ask nothing).
+struct StrokeSegments {
+    /// Each segment as (stroke, index of its first vertex along the stroke), in cells wide
+    /// enough that every segment within a pen width of a point is found around it.
+    grid: std::cell::OnceCell<PointGrid<(usize, usize)>>,
+    cell: f64,
+}
+
+/// A band's side runs beside its partner over at least its last this many pen widths
+/// ([`StrokeSegments::along_band_partner`]): a few sample spacings, more than where a dash ends
+/// near another stroke it crosses or touches.
+const BAND_PARTNER_LOOK_BACK_IN_PEN_WIDTHS: f64 = 3.0;
+
+impl StrokeSegments {
+    fn new(spacing: f64, stroke_width: f64) -> Self {
+        // Segments are at most about a sample spacing long (a corner put back can make one
+        // longer, which is then found a little less far).
+        Self {
+            grid: std::cell::OnceCell::new(),
+            cell: stroke_width.max(1.0) + spacing.max(1.0),
+        }
+    }
+
+    fn grid(&self, vertices: &StrokeVertices) -> &PointGrid<(usize, usize)> {
+        self.grid.get_or_init(|| {
+            let mut grid = PointGrid::new(self.cell);
+            for (stroke, of_stroke) in vertices.of_stroke.iter().enumerate() {
+                for (k, pair) in of_stroke.windows(2).enumerate() {
+                    let (p, q) = (
+                        vertices.positions[pair[0] as usize],
+                        vertices.positions[pair[1] as usize],
+                    );
+                    grid.insert(p.midpoint(q), (stroke, k));
+                }
+            }
+            grid
+        })
+    }
+
+    /// The segments near `p` (every one within a pen width, some farther): their stroke and
+    /// their distance from `p`.
+    fn near<'s>(
+        &'s self,
+        vertices: &'s StrokeVertices,
+        p: Point,
+    ) -> impl Iterator<Item = (usize, f64)> + 's {
+        self.grid(vertices).around(p).map(move |&(stroke, k)| {
+            let of_stroke = &vertices.of_stroke[stroke];
+            let segment = kurbo::Line::new(
+                vertices.positions[of_stroke[k] as usize],
+                vertices.positions[of_stroke[k + 1] as usize],
+            );
+            (stroke, distance_to_segment(p, segment))
+        })
+    }
+
+    /// DECISION: (stop 30) a free end's band partner: the one other stroke that runs within a
+    /// band's width ([`BAND_TIP_MAX_SEPARATION_IN_PEN_WIDTHS`]) of `end`'s stroke all along its
+    /// last [`BAND_PARTNER_LOOK_BACK_IN_PEN_WIDTHS`] (the other side of a band, `crate::strokes`'
+    /// double strands). Where one side of a narrow spike has its pen lift at the spike's base,
+    /// that side's stroke ends partway down the spike, beside the other side's ink, and a corner
+    /// bridge to the body's stroke beyond the lift runs down along that ink and turns at the
+    /// base: only its stretch off the ink is a gap ([`Self::along`], [`Matching::ink_gap`]), as
+    /// for a staggered tip ([`alongside_length`]).
+    fn band_partner(
+        &self,
+        vertices: &StrokeVertices,
+        end: &BridgeableEnd,
+        stroke_width: f64,
+    ) -> Option<usize> {
+        if end.attached {
+            return None;
+        }
+        let band_width = BAND_TIP_MAX_SEPARATION_IN_PEN_WIDTHS * stroke_width;
+        let look_back = BAND_PARTNER_LOOK_BACK_IN_PEN_WIDTHS * stroke_width;
+        let of_stroke = &vertices.of_stroke[end.stroke];
+        // The stroke must be long enough to tell a band's side from a dash ending near another.
+        let long_enough = of_stroke
+            .windows(2)
+            .scan(0.0, |walked, pair| {
+                *walked += vertices.positions[pair[0] as usize]
+                    .distance(vertices.positions[pair[1] as usize]);
+                Some(*walked)
+            })
+            .any(|walked| walked > look_back);
+        if !long_enough {
+            return None;
+        }
+        let from_start = of_stroke.first() == Some(&end.vertex);
+        let mut walked = 0.0;
+        let mut partner: Option<usize> = None;
+        let mut previous: Option<Point> = None;
+        for k in 0..of_stroke.len() {
+            let v = of_stroke[if from_start {
+                k
+            } else {
+                of_stroke.len() - 1 - k
+            }];
+            let p = vertices.positions[v as usize];
+            if let Some(previous) = previous {
+                walked += previous.distance(p);
+                if walked > look_back {
+                    break;
+                }
+            }
+            previous = Some(p);
+            // Exactly one other stroke beside this point, and the same all along.
+            let mut beside: Option<usize> = None;
+            for (stroke, distance) in self.near(vertices, p) {
+                if stroke == end.stroke || distance > band_width {
+                    continue;
+                }
+                match beside {
+                    None => beside = Some(stroke),
+                    Some(known) if known == stroke => {}
+                    Some(_) => return None,
+                }
+            }
+            match (beside, partner) {
+                (Some(only), None) => partner = Some(only),
+                (Some(only), Some(known)) if only == known => {}
+                _ => return None,
+            }
+        }
+        partner
+    }
+
+    /// The length of `path` that runs within a pen width of `stroke`'s centre line.
+    fn along(
+        &self,
+        vertices: &StrokeVertices,
+        stroke: usize,
+        path: [Point; 3],
+        stroke_width: f64,
+    ) -> f64 {
+        let step = ALONGSIDE_STEP_PX;
+        let mut covered = 0.0;
+        for pair in path.windows(2) {
+            let length = pair[0].distance(pair[1]);
+            let steps = (length / step).ceil() as usize;
+            for k in 0..steps {
+                let p = pair[0].lerp(pair[1], (k as f64 + 0.5) / steps as f64);
+                let on_ink = self
+                    .near(vertices, p)
+                    .any(|(s, distance)| s == stroke && distance < stroke_width);
+                if on_ink {
+                    covered += length / steps as f64;
+                }
+            }
+        }
+        covered
+    }
 }
 
 /// The points of `end`'s stroke, from that end to the other.

@@ -740,6 +740,30 @@ mod tests {
     }
 
     #[test]
+    fn a_spike_whose_side_lifted_at_its_base_goes_down_along_the_other_side() {
+        // As above, but the pen lifted on the spike's lower side from its base out to x = 104:
+        // there the band is the upper side's ink alone, and the square's side starts again
+        // below the base. The lower side's end is bridged back along the upper side's ink and
+        // round the base to the square's side (`crate::crawl`'s band partner): only the stretch
+        // off the ink counts as the gap.
+        let mut mask = square_outline(150);
+        draw_line(&mut mask, (90.0, 38.5), (144.0, 40.0), PEN);
+        draw_line(&mut mask, (90.0, 41.5), (144.0, 40.0), PEN);
+        for (xs, ys) in [(40..48, 5..16), (85..104, 41..50)] {
+            for x in xs {
+                for y in ys.clone() {
+                    mask.set(x, y, false);
+                }
+            }
+        }
+        let paths = &traced_paths(&mask);
+        assert_eq!(paths.len(), 1, "{paths:?}");
+        assert!(paths[0].closed, "{paths:?}");
+        let tip = kurbo::Shape::bounding_box(&paths[0].path).max_x();
+        assert!(tip >= 139.0, "the spike's tip is cut off at x = {tip}");
+    }
+
+    #[test]
     fn a_band_cut_by_a_gap_goes_on_as_a_band() {
         // The spike's band with a pen lift right across it: its outer piece is a lone dash,
         // judged as the band's next piece, so it too is two sides (four free ends there).
