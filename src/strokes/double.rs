@@ -15,6 +15,7 @@
 use kurbo::{Point, Vec2};
 
 use super::graph::{Branch, Node, SkeletonGraph};
+use crate::geometry::grid::PointGrid;
 use crate::raster::bitmap::Bitmap;
 
 /// A band is a double strand where it is this much wider than the page's typical stroke, over a
@@ -306,6 +307,16 @@ impl SkeletonGraph {
         }
         let reach = BAND_GAP_REACH_IN_PEN_WIDTHS * stroke_width;
         while !tips.is_empty() {
+            // The tips bucketed by position: a page of noise has thousands of them.
+            let mut tip_grid = PointGrid::new(reach.max(1.0));
+            for &tip in &tips {
+                tip_grid.insert(tip, tip);
+            }
+            let near_a_tip = |p: Point| {
+                tip_grid
+                    .around(p)
+                    .any(|tip: &Point| tip.distance(p) <= reach)
+            };
             let mut new_tips = Vec::new();
             for b in 0..self.branches.len() {
                 let Some((a, z)) = self.branches[b].nodes else {
@@ -313,9 +324,7 @@ impl SkeletonGraph {
                 };
                 let lone = self.degree(a) == 1 && self.degree(z) == 1;
                 let (pa, pz) = (self.nodes[a].position, self.nodes[z].position);
-                let goes_on = tips
-                    .iter()
-                    .any(|tip| tip.distance(pa) <= reach || tip.distance(pz) <= reach);
+                let goes_on = near_a_tip(pa) || near_a_tip(pz);
                 if lone && goes_on && self.branches[b].strand_of.is_none() {
                     new_tips.extend(self.split_if_double(b, &judge));
                 }
