@@ -1861,17 +1861,21 @@ fn alongside_length(
         }
     }
     back.push(to);
-    let step = ALONGSIDE_STEP_PX;
+    covered_length(path, |p| {
+        back.windows(2)
+            .any(|w| distance_to_segment(p, kurbo::Line::new(w[0], w[1])) < stroke_width)
+    })
+}
+
+/// How much of `path` lies on ink, as `on_ink` tells it at points [`ALONGSIDE_STEP_PX`] apart.
+fn covered_length(path: [Point; 3], on_ink: impl Fn(Point) -> bool) -> f64 {
     let mut covered = 0.0;
     for pair in path.windows(2) {
         let length = pair[0].distance(pair[1]);
-        let steps = (length / step).ceil() as usize;
+        let steps = (length / ALONGSIDE_STEP_PX).ceil() as usize;
         for k in 0..steps {
             let p = pair[0].lerp(pair[1], (k as f64 + 0.5) / steps as f64);
-            let near = back
-                .windows(2)
-                .any(|w| distance_to_segment(p, kurbo::Line::new(w[0], w[1])) < stroke_width);
-            if near {
+            if on_ink(p) {
                 covered += length / steps as f64;
             }
         }
@@ -2022,22 +2026,10 @@ impl StrokeSegments {
         path: [Point; 3],
         stroke_width: f64,
     ) -> f64 {
-        let step = ALONGSIDE_STEP_PX;
-        let mut covered = 0.0;
-        for pair in path.windows(2) {
-            let length = pair[0].distance(pair[1]);
-            let steps = (length / step).ceil() as usize;
-            for k in 0..steps {
-                let p = pair[0].lerp(pair[1], (k as f64 + 0.5) / steps as f64);
-                let on_ink = self
-                    .near(vertices, p)
-                    .any(|(s, distance)| s == stroke && distance < stroke_width);
-                if on_ink {
-                    covered += length / steps as f64;
-                }
-            }
-        }
-        covered
+        covered_length(path, |p| {
+            self.near(vertices, p)
+                .any(|(s, distance)| s == stroke && distance < stroke_width)
+        })
     }
 }
 
