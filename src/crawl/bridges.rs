@@ -1893,7 +1893,7 @@ struct StrokeSegments {
 }
 
 /// A band's side runs beside its partner over at least its last this many pen widths
-/// ([`StrokeSegments::along_band_partner`]): a few sample spacings, more than where a dash ends
+/// ([`StrokeSegments::band_partner`]): a few sample spacings, more than where a dash ends
 /// near another stroke it crosses or touches.
 const BAND_PARTNER_LOOK_BACK_IN_PEN_WIDTHS: f64 = 3.0;
 
@@ -1979,17 +1979,10 @@ impl StrokeSegments {
         if !long_enough {
             return None;
         }
-        let from_start = of_stroke.first() == Some(&end.vertex);
         let mut walked = 0.0;
         let mut partner: Option<usize> = None;
         let mut previous: Option<Point> = None;
-        for k in 0..of_stroke.len() {
-            let v = of_stroke[if from_start {
-                k
-            } else {
-                of_stroke.len() - 1 - k
-            }];
-            let p = vertices.positions[v as usize];
+        for p in points_from(vertices, end) {
             if let Some(previous) = previous {
                 walked += previous.distance(p);
                 if walked > look_back {
@@ -2035,29 +2028,32 @@ impl StrokeSegments {
 
 /// The points of `end`'s stroke, from that end to the other.
 fn stroke_points_from(vertices: &StrokeVertices, end: &BridgeableEnd) -> Vec<Point> {
-    let of_stroke = &vertices.of_stroke[end.stroke];
-    let points = of_stroke.iter().map(|&v| vertices.positions[v as usize]);
-    if of_stroke.first() == Some(&end.vertex) {
-        points.collect()
-    } else {
-        points.rev().collect()
-    }
+    points_from(vertices, end).collect()
 }
 
-/// The point `distance` back along the stroke of the free end `end` (along its samples, between
-/// two of them), or its far end if the stroke is shorter, with how far back that point is.
-fn point_behind(vertices: &StrokeVertices, end: &BridgeableEnd, distance: f64) -> (Point, f64) {
+/// The points of `end`'s stroke, from that end to the other, one by one.
+fn points_from<'v>(
+    vertices: &'v StrokeVertices,
+    end: &BridgeableEnd,
+) -> impl Iterator<Item = Point> + 'v {
     let of_stroke = &vertices.of_stroke[end.stroke];
     let from_start = of_stroke.first() == Some(&end.vertex);
-    let mut walked = 0.0;
-    let mut previous = vertices.positions[end.vertex as usize];
-    for k in 1..of_stroke.len() {
+    (0..of_stroke.len()).map(move |k| {
         let v = of_stroke[if from_start {
             k
         } else {
             of_stroke.len() - 1 - k
         }];
-        let p = vertices.positions[v as usize];
+        vertices.positions[v as usize]
+    })
+}
+
+/// The point `distance` back along the stroke of the free end `end` (along its samples, between
+/// two of them), or its far end if the stroke is shorter, with how far back that point is.
+fn point_behind(vertices: &StrokeVertices, end: &BridgeableEnd, distance: f64) -> (Point, f64) {
+    let mut walked = 0.0;
+    let mut previous = vertices.positions[end.vertex as usize];
+    for p in points_from(vertices, end).skip(1) {
         let step = previous.distance(p);
         if walked + step >= distance && step > 0.0 {
             return (previous.lerp(p, (distance - walked) / step), distance);
