@@ -442,7 +442,15 @@ pub fn connect_strokes(strokes: &[Stroke], spacing: f64, stroke_width: f64) -> V
     let bridge_reach = BRIDGE_MAX_IN_TYPICAL_GAPS * typical_gap + stroke_width;
     let (curves, is_band) =
         thread_loops_through_shared_necks(curves, is_band, stroke_width, bridge_reach);
-    let (curves, is_band) = join_holes_touching_their_outline(curves, is_band, stroke_width);
+    // Both strokes through a contact junction name it: once is enough.
+    let mut contacts: Vec<Point> = strokes
+        .iter()
+        .flat_map(|s| s.contacts.iter().copied())
+        .collect();
+    contacts.sort_by_key(|&p| point_key(p));
+    contacts.dedup();
+    let (curves, is_band) =
+        join_holes_touching_their_outline(curves, is_band, &contacts, stroke_width);
     splice_lone_bands(curves, &is_band, stroke_width)
 }
 
@@ -813,6 +821,7 @@ mod tests {
             ),
             ends: [StrokeEnd::Free, StrokeEnd::Free],
             wide: false,
+            contacts: Vec::new(),
         }
     }
 
@@ -1112,6 +1121,7 @@ mod tests {
             ),
             ends: [StrokeEnd::Free, StrokeEnd::Free],
             wide: false,
+            contacts: Vec::new(),
         }
     }
 

@@ -22,6 +22,8 @@ struct Pairing {
     /// Branch ends whose node position is dropped from the polyline, so that no two strokes
     /// share a point (a crossing's second pair and detached branches).
     skip_node_point: HashSet<BranchEnd>,
+    /// Paired ends at a junction where another pair goes on through too, with its position.
+    contact: HashMap<BranchEnd, Point>,
 }
 
 impl Pairing {
@@ -181,6 +183,7 @@ impl SkeletonGraph {
                 line: Polyline::new(vec![node.position], false),
                 ends: [StrokeEnd::Free, StrokeEnd::Free],
                 wide: false,
+                contacts: Vec::new(),
             })
             .collect()
     }
@@ -205,8 +208,14 @@ impl SkeletonGraph {
                 }
                 let first_end = pairing.stroke_end((start_branch, at_start));
                 let mut points: Vec<Point> = Vec::new();
-                let leaving =
-                    self.follow_partners((start_branch, at_start), pairing, visited, &mut points);
+                let mut contacts = Vec::new();
+                let leaving = self.follow_partners(
+                    (start_branch, at_start),
+                    pairing,
+                    visited,
+                    &mut points,
+                    &mut contacts,
+                );
                 let last_end = pairing.stroke_end(leaving);
                 if !points.is_empty() {
                     strokes.push(Stroke {
@@ -214,6 +223,7 @@ impl SkeletonGraph {
                         ends: [first_end, last_end],
                         // A lone dash is a stroke of one branch.
                         wide: branch.wide && leaving.0 == start_branch,
+                        contacts,
                     });
                 }
             }
@@ -233,7 +243,14 @@ impl SkeletonGraph {
                 continue;
             }
             let mut points: Vec<Point> = Vec::new();
-            self.follow_partners((start_branch, true), pairing, visited, &mut points);
+            let mut contacts = Vec::new();
+            self.follow_partners(
+                (start_branch, true),
+                pairing,
+                visited,
+                &mut points,
+                &mut contacts,
+            );
             // A cycle through a node repeats the node point at both ends.
             if points.len() > 1 && points[0] == points[points.len() - 1] {
                 points.pop();
@@ -244,6 +261,7 @@ impl SkeletonGraph {
                     line: Polyline::new(points, closed),
                     ends: [StrokeEnd::Free, StrokeEnd::Free],
                     wide: false,
+                    contacts,
                 });
             }
         }
@@ -257,12 +275,16 @@ impl SkeletonGraph {
         pairing: &Pairing,
         visited: &mut [bool],
         points: &mut Vec<Point>,
+        contacts: &mut Vec<Point>,
     ) -> BranchEnd {
         let (mut b, mut entering_at_start) = entry;
         loop {
             visited[b] = true;
             self.append_branch(points, b, entering_at_start, &pairing.skip_node_point);
             let leaving = (b, !entering_at_start);
+            if let Some(&contact) = pairing.contact.get(&leaving) {
+                contacts.push(contact);
+            }
             match pairing.partner.get(&leaving) {
                 Some(&(next, next_at_start)) if !visited[next] => {
                     b = next;
@@ -359,6 +381,10 @@ fn record_pairs(node: &Node, ends: &[BranchEnd], pairs: &[(usize, usize)], pairi
         used[j] = true;
         pairing.partner.insert(ends[i], ends[j]);
         pairing.partner.insert(ends[j], ends[i]);
+        if pairs.len() > 1 {
+            pairing.contact.insert(ends[i], node.position);
+            pairing.contact.insert(ends[j], node.position);
+        }
         if n > 0 {
             pairing.skip_node_point.insert(ends[i]);
             pairing.skip_node_point.insert(ends[j]);

@@ -50,6 +50,11 @@ pub struct Stroke {
     /// stretches of an outline merged (a narrow spike or finger cut off at its base by a pen
     /// lift), traced along its middle.
     pub wide: bool,
+    /// The junctions this stroke goes on through where another stroke goes on through too: two
+    /// curves touching (their junctions a link apart, merged into one) or crossing. A closed
+    /// curve inside another that passes one of these with it touches it there through ink, even
+    /// where the merged link left them up to three pen widths apart.
+    pub contacts: Vec<Point>,
 }
 
 /// A bubble (a small loop between two junctions, the skeleton of a sliver of paper between two
@@ -397,6 +402,8 @@ mod tests {
         if let StrokeEnd::Attached(p) = attached[0] {
             assert!(p.distance(Point::new(6.5, 1.5)) < 1.0, "{p:?}");
         }
+        // Only the bar goes on through the junction: no contact.
+        assert!(strokes.iter().all(|s| s.contacts.is_empty()), "{strokes:?}");
     }
 
     #[test]
@@ -433,6 +440,10 @@ mod tests {
             .filter(|p| strokes[1].line.points.contains(p))
             .count();
         assert_eq!(shared, 0);
+        // Both go on through the crossing: each names it as a contact.
+        for stroke in &strokes {
+            assert_eq!(stroke.contacts, vec![Point::new(5.5, 5.5)], "{stroke:?}");
+        }
     }
 
     #[test]

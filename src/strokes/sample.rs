@@ -65,6 +65,7 @@ pub fn sample_strokes(strokes: &[Stroke], spacing: f64, tolerance: f64) -> Vec<S
                 line: stroke.line.simplify(tolerance).resample(stroke_spacing),
                 ends: stroke.ends,
                 wide: stroke.wide,
+                contacts: stroke.contacts.clone(),
             }
         })
         .collect()
