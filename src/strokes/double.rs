@@ -352,7 +352,7 @@ impl SkeletonGraph {
     }
 
     /// Reverses `b`'s direction of travel (its points and its nodes' ends).
-    fn reverse_branch(&mut self, b: usize) {
+    pub(super) fn reverse_branch(&mut self, b: usize) {
         let Some((a, z)) = self.branches[b].nodes else {
             return;
         };
@@ -688,6 +688,32 @@ mod tests {
         draw_line(&mut mask, (90.0, 36.0), (110.0, 60.0), PEN);
         draw_line(&mut mask, (90.0, 44.0), (110.0, 60.0), PEN);
         let skeleton = thin(&mask);
+        let (strokes, bands) = crate::strokes::extract_strokes_and_bands(&skeleton, &mask, PEN);
+        assert_eq!(bands.len(), 1, "{strokes:?}");
+    }
+
+    #[test]
+    fn a_band_whose_skeleton_has_a_bubble_at_its_base_is_a_band() {
+        // The square and a spike whose sides merged (as above), with the skeleton drawn by hand:
+        // the spike's centre line splits round a sliver of paper 3 px from the junction and
+        // joins again (a bubble). Collapsed, the bubble leaves a node that only passes the line
+        // on; the spike is still one branch from its junction to its tip, and a band.
+        let mut mask = square_outline(150);
+        draw_line(&mut mask, (90.0, 38.5), (130.0, 40.0), PEN);
+        draw_line(&mut mask, (90.0, 41.5), (130.0, 40.0), PEN);
+        let mut skeleton = Bitmap::new(150, 80);
+        for k in 10..=90 {
+            for (x, y) in [(k, 10), (k, 70), (10, k.min(70)), (90, k.min(70))] {
+                skeleton.set(x, y, true);
+            }
+        }
+        for x in (91..=93).chain(97..=128) {
+            skeleton.set(x, 40, true);
+        }
+        for x in 94..=96 {
+            skeleton.set(x, 39, true);
+            skeleton.set(x, 41, true);
+        }
         let (strokes, bands) = crate::strokes::extract_strokes_and_bands(&skeleton, &mask, PEN);
         assert_eq!(bands.len(), 1, "{strokes:?}");
     }

@@ -212,4 +212,46 @@ impl SkeletonGraph {
             self.remove_branch(branch);
         }
     }
+
+    /// Joins the two branches that meet at a node of two branch ends into one branch through it:
+    /// collapsing a bubble or pruning a spur leaves such a node where a junction was, and a
+    /// branch cut there is measured in two pieces (a band's piece next to its junction, too
+    /// short to judge, and the rest, no longer at a junction).
+    pub(super) fn dissolve_pass_through_nodes(&mut self) {
+        for node in 0..self.nodes.len() {
+            let [(first, first_at_start), (second, second_at_start)] = self.nodes[node].ends[..]
+            else {
+                continue;
+            };
+            if first == second {
+                continue;
+            }
+            // `first` runs into the node, `second` out of it.
+            if first_at_start {
+                self.reverse_branch(first);
+            }
+            if !second_at_start {
+                self.reverse_branch(second);
+            }
+            let (Some((from, _)), Some((_, to))) =
+                (self.branches[first].nodes, self.branches[second].nodes)
+            else {
+                continue;
+            };
+            let onward = std::mem::take(&mut self.branches[second].points);
+            self.branches[first]
+                .points
+                .extend(onward.into_iter().skip(1));
+            self.branches[first].nodes = Some((from, to));
+            self.branches[second].removed = true;
+            self.branches[second].nodes = None;
+            for end in self.nodes[to].ends.iter_mut() {
+                if *end == (second, false) {
+                    *end = (first, false);
+                }
+            }
+            self.nodes[node].ends.clear();
+            self.nodes[node].pruned = true;
+        }
+    }
 }
