@@ -22,8 +22,8 @@ use super::bridges::{
     MAX_STRAIGHT_TURN_DEGREES,
 };
 use super::closure::{
-    close_across_side_by_side_ends, join_holes_touching_their_outline,
-    thread_loops_through_shared_necks,
+    close_across_side_by_side_ends, close_curves_ending_on_themselves,
+    join_holes_touching_their_outline, thread_loops_through_shared_necks,
 };
 use super::reconstruct::{self, canonical_orientation, Reconstruction};
 use super::through::angle;
@@ -451,6 +451,8 @@ pub fn connect_strokes(strokes: &[Stroke], spacing: f64, stroke_width: f64) -> V
     contacts.dedup();
     let (curves, is_band) =
         join_holes_touching_their_outline(curves, is_band, &contacts, stroke_width);
+    let (curves, is_band) =
+        close_curves_ending_on_themselves(curves, is_band, stroke_width, bridge_reach);
     splice_lone_bands(curves, &is_band, stroke_width)
 }
 
