@@ -560,8 +560,9 @@ pub(super) fn join_holes_touching_their_outline(
         if used[hole] || !inner.closed || inner.points.len() < 3 {
             continue;
         }
-        // The other closed curves' vertices within `touch` of this one's, by curve, and where
-        // both pass one contact junction, its nearest vertices on both with the junction.
+        // By curve: where another closed curve comes within `touch` of this one (points every
+        // half `touch` along both, each standing for its nearest vertex), and where both pass
+        // one contact junction (their vertices nearest to it, with the junction).
         let mut touching: HashMap<usize, Vec<Touch>> = HashMap::new();
         for &(p, k) in &along[hole] {
             for &(c, j, q) in grid.around(p) {
@@ -658,8 +659,9 @@ fn points_every(points: &[Point], step: f64) -> Vec<(Point, usize)> {
     out
 }
 
-/// Where a hole touches its outline: the hole's vertex `k`, the outline's vertex `j`, their
-/// distance, and the contact junction between them when they touch through one.
+/// Where a hole touches its outline: the hole's vertex `k` and the outline's vertex `j` nearest to
+/// the place, how far apart the two curves are there, and the contact junction between them when
+/// they touch through one.
 struct Touch {
     k: usize,
     j: usize,
