@@ -839,16 +839,21 @@ mod tests {
     use crate::geometry::Polyline;
     use crate::strokes::{Stroke, StrokeEnd};
 
-    /// One free-ended stroke through `corners`, sampled about every 3 px.
-    fn stroke_through(corners: &[(f64, f64)]) -> Stroke {
+    /// The points along the polyline through `corners`, about every `step` px.
+    fn points_through(corners: &[(f64, f64)], step: f64) -> Vec<Point> {
         let mut points = vec![Point::from(corners[0])];
         for pair in corners.windows(2) {
             let (a, b) = (Point::from(pair[0]), Point::from(pair[1]));
-            let steps = (a.distance(b) / 3.0).ceil() as usize;
+            let steps = (a.distance(b) / step).ceil() as usize;
             points.extend((1..=steps).map(|k| a.lerp(b, k as f64 / steps as f64)));
         }
+        points
+    }
+
+    /// One free-ended stroke through `corners`, sampled about every 3 px.
+    fn stroke_through(corners: &[(f64, f64)]) -> Stroke {
         Stroke {
-            line: Polyline::new(points, false),
+            line: Polyline::new(points_through(corners, 3.0), false),
             ends: [StrokeEnd::Free, StrokeEnd::Free],
             wide: false,
             contacts: Vec::new(),
@@ -1084,13 +1089,7 @@ mod tests {
 
     /// A polyline through `corners`, sampled about every 2 px.
     fn sampled(corners: &[(f64, f64)], closed: bool) -> Polyline {
-        let mut points = vec![Point::from(corners[0])];
-        for pair in corners.windows(2) {
-            let (a, b) = (Point::from(pair[0]), Point::from(pair[1]));
-            let steps = (a.distance(b) / 2.0).ceil() as usize;
-            points.extend((1..=steps).map(|k| a.lerp(b, k as f64 / steps as f64)));
-        }
-        Polyline::new(points, closed)
+        Polyline::new(points_through(corners, 2.0), closed)
     }
 
     #[test]

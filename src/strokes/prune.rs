@@ -214,9 +214,10 @@ impl SkeletonGraph {
     }
 
     /// Joins the two branches that meet at a node of two branch ends into one branch through it:
-    /// collapsing a bubble or pruning a spur leaves such a node where a junction was, and a
-    /// branch cut there is measured in two pieces (a band's piece next to its junction, too
-    /// short to judge, and the rest, no longer at a junction).
+    /// collapsing a bubble leaves such a node where a junction was, and a branch cut there is
+    /// measured in two pieces (a band's piece next to its junction, too short to judge, and the
+    /// rest, no longer at a junction). Called before spur pruning, which leaves such nodes too,
+    /// on purpose (see the call in [`super::extract_strokes_and_bands`]).
     pub(super) fn dissolve_pass_through_nodes(&mut self) {
         for node in 0..self.nodes.len() {
             let [(first, first_at_start), (second, second_at_start)] = self.nodes[node].ends[..]
