@@ -331,6 +331,7 @@ impl SkeletonGraph {
             }
             tips = new_tips;
         }
+        self.join_lone_dashes(mask, &mut judge);
         // A dash whose one end is a band and the rest one stroke: a spike drawn up one side,
         // round its tip and back, whose base is where the pen lifted.
         for b in 0..self.branches.len() {
@@ -349,6 +350,53 @@ impl SkeletonGraph {
                 self.branches[b].wide = judge.widths.get(b).is_some_and(|w| judge.is_band(w));
             }
         }
+    }
+
+    /// DECISION: (stop 32) a dash whose skeleton still has a node where a spur was pruned (the
+    /// junction of a stub that the pen's overshoot left, now joining two branches only) is
+    /// judged as one dash: a spike's side that runs on along the body as one stroke, whose
+    /// other side's stub at the base was pruned, is then a band over one end of that dash
+    /// ([`band_end_cut`]) like any other, not a branch between a free end and a node of two.
+    fn join_lone_dashes(&mut self, mask: &Bitmap, judge: &mut BandJudge) {
+        for node in 0..self.nodes.len() {
+            if self.degree(node) != 2 || !self.on_a_lone_dash(node) {
+                continue;
+            }
+            if let Some(joined) = self.dissolve_pass_through_node(node) {
+                if judge.widths.len() <= joined {
+                    judge.widths.resize(joined + 1, Vec::new());
+                }
+                judge.widths[joined] =
+                    widths_along(mask, &self.branches[joined].points, judge.stroke_width);
+            }
+        }
+    }
+
+    /// Whether the node of two branch ends `node` lies on a dash: going from it both ways
+    /// through nodes of two, each way ends in a free end, through branches that are no band's
+    /// sides.
+    fn on_a_lone_dash(&self, node: usize) -> bool {
+        self.nodes[node].ends.iter().all(|&(start, _)| {
+            let (mut branch, mut from) = (start, node);
+            loop {
+                let Some((a, z)) = self.branches[branch].nodes else {
+                    return false;
+                };
+                if self.branches[branch].strand_of.is_some() || a == z {
+                    return false;
+                }
+                let next = if a == from { z } else { a };
+                match self.nodes[next].ends[..] {
+                    _ if next == node => return false,
+                    [_] => return true,
+                    [(first, _), (second, _)] if first != second => {
+                        branch = if first == branch { second } else { first };
+                        from = next;
+                    }
+                    _ => return false,
+                }
+            }
+        })
     }
 
     /// Reverses `b`'s direction of travel (its points and its nodes' ends).
@@ -804,6 +852,39 @@ mod tests {
         // dash, one stroke wide over the rest: no junction says where its band begins. The
         // outline goes out along the spike and back, and on across the lift below its base.
         assert_one_outline_through_the_spike(130.0, (85..96, 44..50));
+    }
+
+    #[test]
+    fn a_dash_whose_skeleton_kept_the_node_of_a_pruned_stub_is_judged_whole() {
+        // The dash of the test above (the square's right side turning out into the spike),
+        // with a stub of three pixels added to its skeleton above the spike, as a pen's
+        // overshoot leaves: pruned as a spur, it leaves a node of two branches, and the dash
+        // is still one dash whose far end is a band.
+        let mut mask = square_outline(150);
+        draw_line(&mut mask, (90.0, 38.5), (130.0, 40.0), PEN);
+        draw_line(&mut mask, (90.0, 41.5), (130.0, 40.0), PEN);
+        for (xs, ys) in [(40..48, 5..16), (85..96, 44..50)] {
+            for x in xs {
+                for y in ys.clone() {
+                    mask.set(x, y, false);
+                }
+            }
+        }
+        let mut skeleton = thin(&mask);
+        let bands = |skeleton: &Bitmap| {
+            crate::strokes::extract_strokes_and_bands(skeleton, &mask, PEN)
+                .1
+                .len()
+        };
+        assert_eq!(bands(&skeleton), 1, "the control: a band without the stub");
+        let x = (80..100)
+            .rev()
+            .find(|&x| skeleton.get(x, 25))
+            .expect("the square's right side");
+        skeleton.set(x + 1, 25, true);
+        skeleton.set(x + 2, 25, true);
+        skeleton.set(x + 3, 25, true);
+        assert_eq!(bands(&skeleton), 1);
     }
 
     #[test]

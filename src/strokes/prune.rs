@@ -220,39 +220,45 @@ impl SkeletonGraph {
     /// on purpose (see the call in [`super::extract_strokes_and_bands`]).
     pub(super) fn dissolve_pass_through_nodes(&mut self) {
         for node in 0..self.nodes.len() {
-            let [(first, first_at_start), (second, second_at_start)] = self.nodes[node].ends[..]
-            else {
-                continue;
-            };
-            if first == second {
-                continue;
-            }
-            // `first` runs into the node, `second` out of it.
-            if first_at_start {
-                self.reverse_branch(first);
-            }
-            if !second_at_start {
-                self.reverse_branch(second);
-            }
-            let (Some((from, _)), Some((_, to))) =
-                (self.branches[first].nodes, self.branches[second].nodes)
-            else {
-                continue;
-            };
-            let onward = std::mem::take(&mut self.branches[second].points);
-            self.branches[first]
-                .points
-                .extend(onward.into_iter().skip(1));
-            self.branches[first].nodes = Some((from, to));
-            self.branches[second].removed = true;
-            self.branches[second].nodes = None;
-            for end in self.nodes[to].ends.iter_mut() {
-                if *end == (second, false) {
-                    *end = (first, false);
-                }
-            }
-            self.nodes[node].ends.clear();
-            self.nodes[node].pruned = true;
+            self.dissolve_pass_through_node(node);
         }
+    }
+
+    /// Joins the two branches that meet at `node`, if it is a node of two ends of different
+    /// branches, into one branch through it; returns the joined branch (the other is removed).
+    pub(super) fn dissolve_pass_through_node(&mut self, node: usize) -> Option<usize> {
+        let [(first, first_at_start), (second, second_at_start)] = self.nodes[node].ends[..] else {
+            return None;
+        };
+        if first == second {
+            return None;
+        }
+        // `first` runs into the node, `second` out of it.
+        if first_at_start {
+            self.reverse_branch(first);
+        }
+        if !second_at_start {
+            self.reverse_branch(second);
+        }
+        let (Some((from, _)), Some((_, to))) =
+            (self.branches[first].nodes, self.branches[second].nodes)
+        else {
+            return None;
+        };
+        let onward = std::mem::take(&mut self.branches[second].points);
+        self.branches[first]
+            .points
+            .extend(onward.into_iter().skip(1));
+        self.branches[first].nodes = Some((from, to));
+        self.branches[second].removed = true;
+        self.branches[second].nodes = None;
+        for end in self.nodes[to].ends.iter_mut() {
+            if *end == (second, false) {
+                *end = (first, false);
+            }
+        }
+        self.nodes[node].ends.clear();
+        self.nodes[node].pruned = true;
+        Some(first)
     }
 }
