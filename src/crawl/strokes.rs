@@ -28,7 +28,7 @@ use super::closure::{
 use super::reconstruct::{self, canonical_orientation, Reconstruction};
 use super::through::angle;
 use super::ReconstructError;
-use crate::geometry::polyline::polyline_length;
+use crate::geometry::polyline::{polyline_length, signed_turn};
 use crate::geometry::Polyline;
 use crate::strokes::{Stroke, StrokeEnd, MIN_LOOP_SAMPLES};
 
@@ -92,7 +92,7 @@ fn end_direction(points: &[Point], reach: f64, skip: f64) -> Option<(Vec2, f64)>
     let mut direction = chord / chord.hypot();
     let mut bend = 0.0;
     if previous.hypot() > 0.25 * chord.hypot() {
-        let turn = previous.cross(chord).atan2(previous.dot(chord));
+        let turn = signed_turn(previous, chord);
         if turn.abs() < MAX_EXTRAPOLATED_TURN {
             // The turn between the two chords happens over about one reach; the tangent at the
             // end lies skip + half a reach beyond the middle of the near chord.
@@ -121,7 +121,7 @@ fn stroke_curving(points: &[Point], reach: f64) -> f64 {
         point_at_length(points, 2.0 * reach),
     );
     let (previous, chord) = (near - far, end - near);
-    previous.cross(chord).atan2(previous.dot(chord))
+    signed_turn(previous, chord)
 }
 
 /// The point `length` along the polyline from its first point (its last point if it is shorter).

@@ -6,7 +6,7 @@
 
 use kurbo::Point;
 
-use crate::geometry::polyline::Polyline;
+use crate::geometry::polyline::{signed_turn, Polyline};
 use crate::raster::bitmap::Bitmap;
 
 /// DECISION: a tip turns by at least this much between its arms, measured over
@@ -176,13 +176,7 @@ fn turn_over_arms(walk: &ArcWalk, i: usize, arm: f64) -> Option<f64> {
     if incoming.hypot() == 0.0 || outgoing.hypot() == 0.0 {
         return None;
     }
-    Some(
-        incoming
-            .cross(outgoing)
-            .atan2(incoming.dot(outgoing))
-            .abs()
-            .to_degrees(),
-    )
+    Some(signed_turn(incoming, outgoing).abs().to_degrees())
 }
 
 /// The apex of the tip at vertex `i`: where the lines of its two arms meet, past the rounding.

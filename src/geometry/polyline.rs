@@ -2,7 +2,7 @@
 //! simplification (U. Ramer, Computer Graphics and Image Processing 1(3), 1972; D. Douglas and
 //! T. Peucker, The Canadian Cartographer 10(2), 1973) and resampling at a spacing.
 
-use kurbo::Point;
+use kurbo::{Point, Vec2};
 
 /// An ordered chain of points; a closed one joins its last point back to its first, which it does
 /// not repeat.
@@ -140,6 +140,12 @@ fn douglas_peucker(points: &[Point], first: usize, last: usize, tolerance: f64, 
 }
 
 /// The distance from `p` to the nearest point of the segment `line`.
+/// The signed turn (radians, counter-clockwise positive, in -π..π) from the direction `incoming`
+/// to the direction `outgoing`: how much a path going along one turns to go along the other.
+pub(crate) fn signed_turn(incoming: Vec2, outgoing: Vec2) -> f64 {
+    incoming.cross(outgoing).atan2(incoming.dot(outgoing))
+}
+
 pub(crate) fn distance_to_segment(p: Point, line: kurbo::Line) -> f64 {
     use kurbo::ParamCurveNearest;
     // The accuracy argument is for curves: a line's nearest point is computed exactly.

@@ -2,7 +2,9 @@
 //! (issue 8: a right angle sampled as two 45° turns is a corner, a smooth circle sampled coarsely
 //! is not). The fit breaks its cubics at corners so they stay sharp.
 
-use kurbo::{Point, Vec2};
+use kurbo::Point;
+
+use crate::geometry::polyline::signed_turn;
 
 /// DECISION: turns are accumulated over stretches of the polyline at most this many pen widths
 /// long. The skeleton rounds or chamfers a sharp corner over about one pen width, and samples
@@ -98,13 +100,9 @@ fn signed_turns(points: &[Point], closed: bool) -> Vec<f64> {
         else {
             continue;
         };
-        *turn = turn_radians(here - previous, after - here);
+        *turn = signed_turn(here - previous, after - here);
     }
     turns
-}
-
-fn turn_radians(incoming: Vec2, outgoing: Vec2) -> f64 {
-    incoming.cross(outgoing).atan2(incoming.dot(outgoing))
 }
 
 #[cfg(test)]
