@@ -139,13 +139,13 @@ fn douglas_peucker(points: &[Point], first: usize, last: usize, tolerance: f64, 
     }
 }
 
-/// The distance from `p` to the nearest point of the segment `line`.
 /// The signed turn (radians, counter-clockwise positive, in -π..π) from the direction `incoming`
 /// to the direction `outgoing`: how much a path going along one turns to go along the other.
 pub(crate) fn signed_turn(incoming: Vec2, outgoing: Vec2) -> f64 {
     incoming.cross(outgoing).atan2(incoming.dot(outgoing))
 }
 
+/// The distance from `p` to the nearest point of the segment `line`.
 pub(crate) fn distance_to_segment(p: Point, line: kurbo::Line) -> f64 {
     use kurbo::ParamCurveNearest;
     // The accuracy argument is for curves: a line's nearest point is computed exactly.
