@@ -1128,6 +1128,40 @@ mod tests {
     }
 
     #[test]
+    fn a_thin_leg_whose_pen_lifted_at_both_its_top_corners_joins_the_outline() {
+        // A body (three sides of a square, 100 px, and its bottom in two pieces) and a leg under
+        // the gap in its bottom: the leg's two sides 2 px apart (a band split into its sides,
+        // pen 3 px), each a stroke, whose tops end 4 px under the bottom, between the bottom's
+        // two pieces. The pen lifted at both top corners: the body goes down one side of the
+        // leg and up the other, one closed outline. The bottom's straight bridge across the leg
+        // is the cheapest bridge there; taken first, it left the leg's sides only each other,
+        // and the leg was sealed on itself as a loop of its own.
+        let body = open(
+            &[
+                line((44.0, 100.0), (0.0, 100.0)),
+                line((0.0, 100.0), (0.0, 0.0))[1..].to_vec(),
+                line((0.0, 0.0), (100.0, 0.0))[1..].to_vec(),
+                line((100.0, 0.0), (100.0, 100.0))[1..].to_vec(),
+                line((100.0, 100.0), (56.0, 100.0))[1..].to_vec(),
+            ]
+            .concat(),
+        );
+        let sides = [49.0, 51.0].map(|x| open(&line((x, 104.0), (x, 150.0))));
+        let strokes = crate::strokes::sample_strokes(
+            &[body, sides[0].clone(), sides[1].clone()],
+            4.0,
+            0.5,
+        );
+        let curves = connect(&strokes, Method::Strokes, 4.0, 3.0);
+        assert_eq!(curves.len(), 1, "the leg is a loop of its own: {curves:?}");
+        assert!(curves[0].closed, "{curves:?}");
+        assert!(
+            curves[0].points.iter().any(|p| p.y > 145.0),
+            "the outline does not reach the leg's foot: {curves:?}"
+        );
+    }
+
+    #[test]
     fn a_band_cut_off_at_its_base_goes_out_and_back_from_the_outline() {
         // A closed outline (a square of side 100) and, 6 px right of its right side, a dash
         // 40 px long standing out from it: a finger whose sides merged into one band of ink,
