@@ -1147,11 +1147,8 @@ mod tests {
             .concat(),
         );
         let sides = [49.0, 51.0].map(|x| open(&line((x, 104.0), (x, 150.0))));
-        let strokes = crate::strokes::sample_strokes(
-            &[body, sides[0].clone(), sides[1].clone()],
-            4.0,
-            0.5,
-        );
+        let strokes =
+            crate::strokes::sample_strokes(&[body, sides[0].clone(), sides[1].clone()], 4.0, 0.5);
         let curves = connect(&strokes, Method::Strokes, 4.0, 3.0);
         assert_eq!(curves.len(), 1, "the leg is a loop of its own: {curves:?}");
         assert!(curves[0].closed, "{curves:?}");
