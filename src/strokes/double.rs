@@ -113,6 +113,18 @@ const MIN_MEASURED_STRETCHES: usize = 1;
 // triangle's corner), three fixes one spike fewer; no line-art dash of seeds 1, 2 or 3 is cut.
 const BAND_END_MIN_RUN_IN_STRETCHES: usize = 2;
 
+/// A branch from a junction to a free end, found a band ([`BandJudge::is_band`]), is cut where
+/// its band ends ([`band_end_cut`]) when the band's wide windows run on for at least this many
+/// stretches; otherwise it is split into two sides all along.
+// DECISION: (stop 33) one stretch, where a lone dash needs two: the branch is a band already
+// (its widest stretch is clearly wide), and what is decided is only where its band ends, not
+// whether it is one; the corner or hooked end that two stretches keep out of a lone dash's
+// bands is no question here. Two spiral turns that touch for a few pen widths next to the
+// junction where they part, on a thin pen, were split into two sides all along the turn.
+// Measured on the benchmark: seeds 1, 3, 5 368, 361 → 363 (an animal, a spike), 356;
+// validation 356 → 357 (+3 −2), seed 4 356 → 358.
+const BAND_END_MIN_RUN_FROM_JUNCTION_IN_STRETCHES: usize = 1;
+
 /// ... the dash's end beyond them (a spike's tip, where its two sides close in to one pen width)
 /// is at most this share of their run ...
 // DECISION: (stop 26) a straight-sided spike is wider than 1.3 strokes over about 70 % of the way
@@ -221,7 +233,8 @@ enum BandEnd {
 
 /// Where a dash with these widths is a band over one end and one stroke over the rest: the
 /// longest run of stretches wider than one stroke ([`BandJudge::is_wide`]) is at least
-/// [`BAND_END_MIN_RUN_IN_STRETCHES`] long, the end beyond it (a spike's tip, where its sides
+/// `min_run` stretches long ([`BAND_END_MIN_RUN_IN_STRETCHES`] for a lone dash,
+/// [`BAND_END_MIN_RUN_FROM_JUNCTION_IN_STRETCHES`] for a band out of a junction), the end beyond it (a spike's tip, where its sides
 /// close in) no longer than [`BAND_END_MAX_TIP_SHARE`] of the run, and the stroke on the other
 /// side at least [`BAND_END_MIN_STROKE_IN_STRETCHES`] long. The nearer end wins when both would
 /// do.
@@ -234,7 +247,7 @@ enum BandEnd {
 /// wide only where they run along the other arm (a thick star's tip and the next notch: without
 /// it, one star lost on seed 1). Measured on the benchmark: seed 5 349 → 352 (three spikes),
 /// seeds 1 and 3, validation and seed 4 unchanged; none lost.
-fn band_end_cut(widths: &[Option<f64>], judge: &BandJudge) -> Option<BandEnd> {
+fn band_end_cut(widths: &[Option<f64>], judge: &BandJudge, min_run: usize) -> Option<BandEnd> {
     let stretch = judge.stretch.max(1);
     let n = widths.len();
     if n < stretch {
@@ -299,7 +312,7 @@ fn band_end_cut(widths: &[Option<f64>], judge: &BandJudge) -> Option<BandEnd> {
         .filter(|&&(from, to, wide)| wide < to - from);
     std::iter::once((longest.0, longest.1, longest.1 - longest.0))
         .chain(merged.copied())
-        .find_map(|(from, to, wide)| band_over_one_end(from, to, wide, n, stretch))
+        .find_map(|(from, to, wide)| band_over_one_end(from, to, wide, n, stretch, min_run))
 }
 
 /// The band over one end of a dash of `n` points whose band has wide windows (starts) from..to,
@@ -310,9 +323,10 @@ fn band_over_one_end(
     wide: usize,
     n: usize,
     stretch: usize,
+    min_run: usize,
 ) -> Option<BandEnd> {
     let run = to - from;
-    if wide == 0 || wide < BAND_END_MIN_RUN_IN_STRETCHES * stretch {
+    if wide == 0 || wide < min_run * stretch {
         return None;
     }
     // The wide points are from..to + stretch - 1; the tip lies beyond them, the stroke on the
@@ -404,10 +418,9 @@ impl SkeletonGraph {
                 // where one stroke ends. Measured on the benchmark: all five splits unchanged
                 // in count (the leg's top in `--debug` pictures traced right, on an animal that
                 // fails elsewhere).
-                let band_over_one_end = judge
-                    .widths
-                    .get(b)
-                    .is_some_and(|widths| band_end_cut(widths, &judge).is_some());
+                let band_over_one_end = judge.widths.get(b).is_some_and(|widths| {
+                    band_end_cut(widths, &judge, BAND_END_MIN_RUN_IN_STRETCHES).is_some()
+                });
                 if lone && goes_on && self.branches[b].strand_of.is_none() && !band_over_one_end {
                     new_tips.extend(self.split_if_double(b, &mut judge));
                 }
@@ -511,7 +524,7 @@ impl SkeletonGraph {
         if branch.removed || a == z || branch.strand_of.is_some() || !lone {
             return;
         }
-        let Some(cut) = band_end_cut(&judge.widths[b], judge) else {
+        let Some(cut) = band_end_cut(&judge.widths[b], judge, BAND_END_MIN_RUN_IN_STRETCHES) else {
             return;
         };
         self.cut_band_end(b, cut, judge);
@@ -643,11 +656,12 @@ impl SkeletonGraph {
         let (a_junction, z_junction) = (self.degree(a) >= 3, self.degree(z) >= 3);
         let (a_free, z_free) = (self.degree(a) == 1, self.degree(z) == 1);
         if (a_junction && z_free) || (z_junction && a_free) {
-            let band_at_junction = match band_end_cut(&widths, judge) {
-                Some(BandEnd::AtStart(cut)) if a_junction => Some(BandEnd::AtStart(cut)),
-                Some(BandEnd::AtEnd(cut)) if z_junction => Some(BandEnd::AtEnd(cut)),
-                _ => None,
-            };
+            let band_at_junction =
+                match band_end_cut(&widths, judge, BAND_END_MIN_RUN_FROM_JUNCTION_IN_STRETCHES) {
+                    Some(BandEnd::AtStart(cut)) if a_junction => Some(BandEnd::AtStart(cut)),
+                    Some(BandEnd::AtEnd(cut)) if z_junction => Some(BandEnd::AtEnd(cut)),
+                    _ => None,
+                };
             if let Some(cut) = band_at_junction {
                 judge.widths[b] = widths;
                 return vec![self.cut_band_end(b, cut, judge)];
@@ -782,7 +796,10 @@ fn side_offsets(
 
 #[cfg(test)]
 mod tests {
-    use super::{band_end_cut, BandEnd, BandJudge, BAND_GAP_REACH_IN_PEN_WIDTHS};
+    use super::{
+        band_end_cut, BandEnd, BandJudge, BAND_END_MIN_RUN_IN_STRETCHES,
+        BAND_GAP_REACH_IN_PEN_WIDTHS,
+    };
     use crate::raster::bitmap::Bitmap;
     use crate::raster::clean::tests::draw_line;
     use crate::raster::thin::thin;
@@ -1030,13 +1047,13 @@ mod tests {
         // together are.
         let spike = widths(&[(6.0, 13), (3.0, 8), (5.5, 14), (3.0, 30)]);
         assert!(
-            matches!(band_end_cut(&spike, &judge()), Some(BandEnd::AtStart(cut)) if cut >= 32),
+            matches!(band_end_cut(&spike, &judge(), BAND_END_MIN_RUN_IN_STRETCHES), Some(BandEnd::AtStart(cut)) if cut >= 32),
             "the band runs from the tip to the dash's stroke"
         );
         // The control: one pen wide between two points where a corner's cross-section runs
         // along the other arm: wide windows only where the mean takes in the corner.
         let corners = widths(&[(3.0, 40), (12.0, 3), (3.0, 8), (12.0, 3), (3.0, 30)]);
-        assert!(band_end_cut(&corners, &judge()).is_none());
+        assert!(band_end_cut(&corners, &judge(), BAND_END_MIN_RUN_IN_STRETCHES).is_none());
     }
 
     #[test]
