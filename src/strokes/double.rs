@@ -408,8 +408,13 @@ impl SkeletonGraph {
                     continue;
                 };
                 let lone = self.degree(a) == 1 && self.degree(z) == 1;
+                if !lone || self.branches[b].strand_of.is_some() {
+                    continue;
+                }
                 let (pa, pz) = (self.nodes[a].position, self.nodes[z].position);
-                let goes_on = near_a_tip(pa) || near_a_tip(pz);
+                if !near_a_tip(pa) && !near_a_tip(pz) {
+                    continue;
+                }
                 // DECISION: (stop 33) a piece that is a band over one end only and one stroke
                 // over the rest ([`band_end_cut`]) is not split whole: it is cut where the band
                 // ends ([`Self::split_band_end`], below), so that the stroke goes on from one
@@ -421,7 +426,7 @@ impl SkeletonGraph {
                 let band_over_one_end = judge.widths.get(b).is_some_and(|widths| {
                     band_end_cut(widths, &judge, BAND_END_MIN_RUN_IN_STRETCHES).is_some()
                 });
-                if lone && goes_on && self.branches[b].strand_of.is_none() && !band_over_one_end {
+                if !band_over_one_end {
                     new_tips.extend(self.split_if_double(b, &mut judge));
                 }
             }
