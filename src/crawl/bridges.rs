@@ -979,7 +979,13 @@ fn bridge_candidates(
     let mut cusps: HashSet<(u32, u32)> = HashSet::new();
     let ran_into = strokes_ran_into(vertices, ends);
     let segments = StrokeSegments::new(spacing, stroke_width);
+    // Each end's band partner ([`StrokeSegments::band_partner`]), found once.
     let mut band_partners: HashMap<u32, Option<usize>> = HashMap::new();
+    let mut band_partner_of = |end: &BridgeableEnd| -> Option<usize> {
+        *band_partners
+            .entry(end.vertex)
+            .or_insert_with(|| segments.band_partner(vertices, end, stroke_width))
+    };
     for (a, b) in ends_within(ends, reach) {
         // DECISION: a T-end is never bridged to an end of the stroke it ran into: the T already
         // joins the two strokes, and the short overshoot of that stroke past the junction (a
@@ -1043,14 +1049,8 @@ fn bridge_candidates(
         // none lost.
         let band_tip = point_alike
             && a.at.distance(b.at) <= BAND_TIP_MAX_SEPARATION_IN_PEN_WIDTHS * stroke_width
-            && {
-                let mut partner_of = |end: &BridgeableEnd| {
-                    *band_partners
-                        .entry(end.vertex)
-                        .or_insert_with(|| segments.band_partner(vertices, end, stroke_width))
-                };
-                partner_of(&a) == Some(b.stroke) && partner_of(&b) == Some(a.stroke)
-            };
+            && band_partner_of(&a) == Some(b.stroke)
+            && band_partner_of(&b) == Some(a.stroke);
         for mut shape in [shape, turn_back, step].into_iter().flatten() {
             if band_tip && shape.cost < CUSP_COST_OFFSET {
                 shape.cost += CUSP_COST_OFFSET;
@@ -1070,10 +1070,7 @@ fn bridge_candidates(
                     return staggered;
                 }
                 let mut along_partner = |end: &BridgeableEnd| {
-                    let partner = *band_partners
-                        .entry(end.vertex)
-                        .or_insert_with(|| segments.band_partner(vertices, end, stroke_width));
-                    partner.map_or(0.0, |stroke| {
+                    band_partner_of(end).map_or(0.0, |stroke| {
                         segments.along(vertices, stroke, path, stroke_width)
                     })
                 };
