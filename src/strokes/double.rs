@@ -234,9 +234,9 @@ enum BandEnd {
 /// Where a dash with these widths is a band over one end and one stroke over the rest: the
 /// longest run of stretches wider than one stroke ([`BandJudge::is_wide`]) is at least
 /// `min_run` stretches long ([`BAND_END_MIN_RUN_IN_STRETCHES`] for a lone dash,
-/// [`BAND_END_MIN_RUN_FROM_JUNCTION_IN_STRETCHES`] for a band out of a junction), the end beyond it (a spike's tip, where its sides
-/// close in) no longer than [`BAND_END_MAX_TIP_SHARE`] of the run, and the stroke on the other
-/// side at least [`BAND_END_MIN_STROKE_IN_STRETCHES`] long. The nearer end wins when both would
+/// [`BAND_END_MIN_RUN_FROM_JUNCTION_IN_STRETCHES`] for a band out of a junction), the end beyond
+/// it (a spike's tip, where its sides close in) no longer than [`BAND_END_MAX_TIP_SHARE`] of the
+/// run, and the stroke on the other side at least [`BAND_END_MIN_STROKE_IN_STRETCHES`] long. The nearer end wins when both would
 /// do.
 ///
 /// DECISION: (stop 32) where the longest run alone is no band over one end, runs that are wide
@@ -831,6 +831,16 @@ mod tests {
         extract_strokes(&thin(&mask), &mask, PEN)
     }
 
+    /// How many times `strokes` pass between x and x + 1: one skeleton point each time along a
+    /// line across x (two sides of a band in one stroke count twice).
+    fn passes(strokes: &[Stroke], x: f64) -> usize {
+        strokes
+            .iter()
+            .flat_map(|s| &s.line.points)
+            .filter(|p| p.x > x && p.x < x + 1.0)
+            .count()
+    }
+
     /// How many skeleton points of `strokes` lie on the spike's outer half (x > 110): about 20
     /// for each time a stroke runs along it.
     fn points_along_the_spike(strokes: &[Stroke]) -> usize {
@@ -1052,7 +1062,10 @@ mod tests {
         // together are.
         let spike = widths(&[(6.0, 13), (3.0, 8), (5.5, 14), (3.0, 30)]);
         assert!(
-            matches!(band_end_cut(&spike, &judge(), BAND_END_MIN_RUN_IN_STRETCHES), Some(BandEnd::AtStart(cut)) if cut >= 32),
+            matches!(
+                band_end_cut(&spike, &judge(), BAND_END_MIN_RUN_IN_STRETCHES),
+                Some(BandEnd::AtStart(cut)) if cut >= 32
+            ),
             "the band runs from the tip to the dash's stroke"
         );
         // The control: one pen wide between two points where a corner's cross-section runs
@@ -1107,13 +1120,7 @@ mod tests {
             }
         }
         let strokes = extract_strokes(&thin(&mask), &mask, PEN);
-        // One skeleton point between x 180 and 181 for each time a stroke runs along there.
-        let along_the_line = strokes
-            .iter()
-            .flat_map(|s| &s.line.points)
-            .filter(|p| p.x > 180.0 && p.x < 181.0)
-            .count();
-        assert_eq!(along_the_line, 1, "{strokes:?}");
+        assert_eq!(passes(&strokes, 180.0), 1, "along the line: {strokes:?}");
     }
 
     #[test]
@@ -1128,16 +1135,8 @@ mod tests {
         draw_line(&mut mask, (90.0, 42.5), (150.0, 40.0), PEN);
         draw_line(&mut mask, (150.0, 40.0), (210.0, 40.0), PEN);
         let strokes = extract_strokes(&thin(&mask), &mask, PEN);
-        // How many times the strokes pass between x and x + 1 (one skeleton point each time).
-        let passes = |x: f64| {
-            strokes
-                .iter()
-                .flat_map(|s| &s.line.points)
-                .filter(|p| p.x > x && p.x < x + 1.0)
-                .count()
-        };
-        assert_eq!(passes(185.0), 1, "along the line: {strokes:?}");
-        assert_eq!(passes(110.0), 2, "along the band: {strokes:?}");
+        assert_eq!(passes(&strokes, 185.0), 1, "along the line: {strokes:?}");
+        assert_eq!(passes(&strokes, 110.0), 2, "along the band: {strokes:?}");
     }
 
     #[test]
