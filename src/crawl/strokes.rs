@@ -386,7 +386,10 @@ pub fn connect_strokes(strokes: &[Stroke], spacing: f64, stroke_width: f64) -> V
         typical_gap,
     } = match_gap_bridges(&vertices, &ends, spacing, stroke_width);
     // An arm cut off an opened corner ends on the corner point, like a T-end.
-    let cut: HashSet<(u32, u32)> = cuts.iter().flat_map(|&(a, b)| [(a, b), (b, a)]).collect();
+    let cut: HashSet<(u32, u32)> = cuts
+        .iter()
+        .flat_map(|c| [(c.arm, c.corner), (c.corner, c.arm)])
+        .collect();
     edges.retain(|edge| !cut.contains(edge));
     let bridged: HashSet<u32> = bridges.iter().flat_map(|b| [b.a, b.b]).collect();
     // T-ends that took no bridge end on the stroke they ran into.
@@ -396,8 +399,8 @@ pub fn connect_strokes(strokes: &[Stroke], spacing: f64, stroke_width: f64) -> V
         .map(|end| (end.vertex, end.at))
         .chain(
             cuts.iter()
-                .filter(|(arm, _)| !bridged.contains(arm))
-                .map(|&(arm, corner)| (arm, positions[corner as usize])),
+                .filter(|c| !bridged.contains(&c.arm))
+                .map(|c| (c.arm, c.at)),
         )
         .chain(attached)
         .collect();
@@ -1438,6 +1441,32 @@ mod tests {
         assert!(
             stem.is_some_and(|stem| stem.points.iter().all(|p| p.x.abs() <= 3.5)),
             "the stem does not go on through: {curves:?}"
+        );
+    }
+
+    #[test]
+    fn a_crossbar_cut_off_a_rounded_corner_ends_on_the_stem_at_its_own_height() {
+        // An "H"'s left stem with a gap just above the crossbar: the skeleton joins the crossbar
+        // and the lower stem in an "L" whose corner thinning rounded to (1.5, 42.5), off both
+        // lines. The stem goes on through; the crossbar ends where its line meets the stem's,
+        // at (0, 40), not at the rounded corner.
+        let mut bar_and_lower = line((40.0, 40.0), (4.0, 40.0));
+        bar_and_lower.push((1.5, 42.5));
+        bar_and_lower.extend(line((0.0, 45.0), (0.0, 80.0)));
+        let strokes = vec![open(&line((0.0, 0.0), (0.0, 35.0))), open(&bar_and_lower)];
+        let curves = connect(&strokes, Method::Strokes, 4.0, 3.0);
+        assert_eq!(curves.len(), 2, "{curves:?}");
+        let bar = curves
+            .iter()
+            .find(|curve| curve.points.iter().any(|p| p.x > 30.0))
+            .expect("a curve along the bar");
+        let bar_end = [bar.points[0], bar.points[bar.points.len() - 1]]
+            .into_iter()
+            .min_by(|a, b| a.x.total_cmp(&b.x))
+            .unwrap();
+        assert!(
+            bar_end.distance(Point::new(0.0, 40.0)) <= 1.0,
+            "the bar ends at {bar_end:?}: {curves:?}"
         );
     }
 

@@ -34,7 +34,7 @@ const JUNCTION_NEAR_IN_PEN_WIDTHS: f64 = 0.5;
 
 /// The arms of a corner are measured this many sample spacings from it: far enough that the
 /// skeleton's rounding of the corner does not bend them.
-const ARM_IN_SPACINGS: f64 = 2.0;
+pub(super) const ARM_IN_SPACINGS: f64 = 2.0;
 
 /// The end must point at the corner, and the corner's kept arm go on from the end's line, each
 /// within this angle (degrees): a straight continuation, with room for the wobble of a
@@ -84,6 +84,9 @@ pub(super) struct ThroughCorner {
     /// Whether the corner is a hairpin, the touching tips of two lines side by side: the lines
     /// go on past it, the corner point between them is no part of either.
     pub(super) hairpin: bool,
+    /// Whether a T-end of another stroke ends at the corner: a junction of the skeleton, whose
+    /// vertex is where the lines meet, not a stroke's own corner rounded by thinning.
+    pub(super) at_junction: bool,
 }
 
 /// A possible bridge from a free end through a corner, with its cost and length.
@@ -103,6 +106,8 @@ struct Corner {
     arms: [Vec2; 2],
     /// The points where the arms were measured.
     arm_points: [Point; 2],
+    /// Whether a T-end's junction lies beside it.
+    at_junction: bool,
 }
 
 /// Every free end that points at a corner of a stroke (within `reach`) from the far side of
@@ -203,6 +208,7 @@ pub(super) fn through_candidates(
                     keep: corner.neighbours[keep],
                     cut: corner.neighbours[cut],
                     hairpin,
+                    at_junction: corner.at_junction,
                 },
                 cost,
                 length: distance,
@@ -330,7 +336,8 @@ fn find_corners(
                 (k - 1, k + 1)
             };
             // The sharpest of a run: ties go to the first.
-            let least = if at_junction(point(k)) {
+            let beside_junction = at_junction(point(k));
+            let least = if beside_junction {
                 min_turn_at_junction
             } else {
                 min_turn
@@ -344,6 +351,7 @@ fn find_corners(
                 neighbours: [of_stroke[before], of_stroke[after]],
                 arms,
                 arm_points: arm_ends,
+                at_junction: beside_junction,
             });
         }
     }
