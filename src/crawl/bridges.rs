@@ -86,9 +86,8 @@ pub(super) struct Cut {
 }
 
 /// The bridges chosen, and the stroke edges they cut: a bridge through a corner opens the corner,
-/// and the arm it does not go on into ends at the corner point (`cuts`: the arm's vertex next to
-/// the corner, and the corner's vertex). Free ends that end on a bridge, and where
-/// (`attached`, see [`defer_ends_on_gaps`]).
+/// and the arm it does not go on into ends at the corner point (`cuts`, [`Cut`]). Free ends that
+/// end on a bridge, and where (`attached`, see [`defer_ends_on_gaps`]).
 #[derive(Debug, Default)]
 pub(super) struct GapBridges {
     pub(super) bridges: Vec<Bridge>,
@@ -342,13 +341,13 @@ pub(super) fn match_gap_bridges(
 }
 
 /// DECISION: an arm cut off a corner that a line went on through ([`super::through`]) ends on
-/// the corner point ([`cut_arm_end_point`]), like a T-end; a free end that no bridge took and whose line (as measured or
-/// along its stroke, [`unbent`]) points at that corner point, within the straight turn limit and
-/// the ordinary gap limit, goes on from the corner point along the arm: the two strokes of a
-/// "K" that meet on its stem where the stem is broken, the arm drawn into the stem's lower half
-/// and the leg starting a gap away. The corner point is where they turn. Cheapest first (as
-/// straight bridges cost), each end once. Measured on the benchmark: dev 318 → 319 (a "K"),
-/// val unchanged. Also (stop 24) a T-end that took no bridge and whose junction lies within a
+/// the corner point ([`cut_arm_end_point`]), like a T-end; a free end that no bridge took and
+/// whose line (as measured or along its stroke, [`unbent`]) points at that corner point, within
+/// the straight turn limit and the ordinary gap limit, goes on from the corner point along the
+/// arm: the two strokes of a "K" that meet on its stem where the stem is broken, the arm drawn
+/// into the stem's lower half and the leg starting a gap away. The corner point is where they
+/// turn. Cheapest first (as straight bridges cost), each end once. Measured on the benchmark:
+/// dev 318 → 319 (a "K"), val unchanged. Also (stop 24) a T-end that took no bridge and whose junction lies within a
 /// pen width of the corner point goes on from there along the arm: a "K"'s arm ends on the stem
 /// where its leg was cut off the corner (seed 3 one drawing, val one, none lost).
 fn bridge_cut_arms(
@@ -1142,15 +1141,6 @@ fn bridge_candidates(
     (candidates, on_gaps)
 }
 
-/// The far end of the arm that a bridge through `corner` would cut off its stroke: the stroke's
-/// end on the cut side of the corner (none for a closed stroke).
-///
-/// DECISION: (stop 27) a free end is not taken through a corner whose cut arm ends in the end's
-/// own cusp partner ([`cusp_shape`]): the arm is the other lobe coming down into the cusp, and
-/// the end turns back into it at the point. Taken through the corner, the end would leave that
-/// arm dangling as a path of its own and the cusp open (a cloud whose lobe is broken just after
-/// the notch: the end's line runs on into the neighbouring lobe's top, which is a corner of its
-/// stroke with the notch's arm).
 /// DECISION: (stop 34) where a line goes on through a stroke's own corner ([`super::through`]),
 /// the arm it cuts off ends where the arm's line meets the line going through (from the end that
 /// went on to the corner's vertex), not on the corner's vertex: thinning rounds the corner, and
@@ -1220,6 +1210,15 @@ fn cut_arm_end_point(
 /// about a pen width off the lines' meeting point.
 const CUT_ARM_MAX_SHIFT_IN_PEN_WIDTHS: f64 = 2.0;
 
+/// The far end of the arm that a bridge through `corner` would cut off its stroke: the stroke's
+/// end on the cut side of the corner (none for a closed stroke).
+///
+/// DECISION: (stop 27) a free end is not taken through a corner whose cut arm ends in the end's
+/// own cusp partner ([`cusp_shape`]): the arm is the other lobe coming down into the cusp, and
+/// the end turns back into it at the point. Taken through the corner, the end would leave that
+/// arm dangling as a path of its own and the cusp open (a cloud whose lobe is broken just after
+/// the notch: the end's line runs on into the neighbouring lobe's top, which is a corner of its
+/// stroke with the notch's arm).
 fn cut_arm_end(vertices: &StrokeVertices, corner: &ThroughCorner) -> Option<u32> {
     if vertices.closed[corner.stroke] {
         return None;
