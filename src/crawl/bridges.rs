@@ -13,7 +13,7 @@ use kurbo::{Point, Vec2};
 use super::strokes::{point_key, PointKey, StrokeVertices};
 use super::through::{angle, through_candidates, ThroughCandidate, ThroughCorner, ARM_IN_SPACINGS};
 use crate::geometry::grid::PointGrid;
-use crate::geometry::polyline::{distance_to_segment, polyline_length};
+use crate::geometry::polyline::{distance_to_segment, lines_meet, polyline_length};
 use crate::geometry::UnionFind;
 use crate::strokes::MIN_LOOP_SAMPLES;
 
@@ -270,10 +270,9 @@ pub(super) fn match_gap_bridges(
         if let Some(through) = m.through {
             // At a hairpin the lines go on into their arms past the corner point, which lies
             // between them.
-            let corner_point =
-                (!through.hairpin).then(|| vertices.positions[through.corner as usize]);
+            let corner_at = vertices.positions[through.corner as usize];
+            let corner_point = (!through.hairpin).then_some(corner_at);
             if opened.insert(through.corner) {
-                let corner_at = vertices.positions[through.corner as usize];
                 // At a hairpin the corner point lies between the lines, on neither.
                 let at = if through.hairpin {
                     corner_at
@@ -347,9 +346,10 @@ pub(super) fn match_gap_bridges(
 /// arm: the two strokes of a "K" that meet on its stem where the stem is broken, the arm drawn
 /// into the stem's lower half and the leg starting a gap away. The corner point is where they
 /// turn. Cheapest first (as straight bridges cost), each end once. Measured on the benchmark:
-/// dev 318 → 319 (a "K"), val unchanged. Also (stop 24) a T-end that took no bridge and whose junction lies within a
-/// pen width of the corner point goes on from there along the arm: a "K"'s arm ends on the stem
-/// where its leg was cut off the corner (seed 3 one drawing, val one, none lost).
+/// dev 318 → 319 (a "K"), val unchanged. Also (stop 24) a T-end that took no bridge and whose
+/// junction lies within a pen width of the corner point goes on from there along the arm: a
+/// "K"'s arm ends on the stem where its leg was cut off the corner (seed 3 one drawing, val one,
+/// none lost).
 fn bridge_cut_arms(
     ends: &[BridgeableEnd],
     result: &mut GapBridges,
@@ -1167,11 +1167,11 @@ fn cut_arm_end_point(
         return corner_at;
     }
     let line = &vertices.of_stroke[corner.stroke];
-    let Some(at) = line.iter().position(|&v| v == corner.corner) else {
+    let Some((at, forward)) = cut_side(line, corner) else {
         return corner_at;
     };
     // The arm's vertices from the corner outwards.
-    let arm: Vec<Point> = if line.get(at + 1) == Some(&corner.cut) {
+    let arm: Vec<Point> = if forward {
         line[at + 1..]
             .iter()
             .map(|&v| vertices.positions[v as usize])
@@ -1188,21 +1188,22 @@ fn cut_arm_end_point(
     let (Some(near), Some(far)) = (beyond(reach), beyond(2.0 * reach)) else {
         return corner_at;
     };
-    let (along_arm, going_through) = (arm[near] - arm[far], corner_at - through_from);
-    if near == far || along_arm.hypot() == 0.0 || going_through.hypot() == 0.0 {
-        return corner_at;
-    }
-    let (u, v) = (along_arm.normalize(), going_through.normalize());
-    let sine = u.cross(v);
-    if sine.abs() < MIN_RAY_CROSSING_SINE {
-        return corner_at;
-    }
-    let meet = arm[far] + u * ((through_from - arm[far]).cross(v) / sine);
-    if meet.distance(corner_at) <= CUT_ARM_MAX_SHIFT_IN_PEN_WIDTHS * stroke_width {
-        meet
-    } else {
-        corner_at
-    }
+    lines_meet(
+        arm[far],
+        arm[near],
+        through_from,
+        corner_at,
+        MIN_RAY_CROSSING_SINE,
+    )
+    .filter(|meet| meet.distance(corner_at) <= CUT_ARM_MAX_SHIFT_IN_PEN_WIDTHS * stroke_width)
+    .unwrap_or(corner_at)
+}
+
+/// Where `corner` lies among its stroke's vertices `line`, and whether the arm that a bridge
+/// through it cuts off runs forward from there (towards the stroke's last vertex).
+fn cut_side(line: &[u32], corner: &ThroughCorner) -> Option<(usize, bool)> {
+    let at = line.iter().position(|&v| v == corner.corner)?;
+    Some((at, line.get(at + 1) == Some(&corner.cut)))
 }
 
 /// A cut arm's line meets the line going through at most this far (pen widths) from the
@@ -1224,8 +1225,8 @@ fn cut_arm_end(vertices: &StrokeVertices, corner: &ThroughCorner) -> Option<u32>
         return None;
     }
     let line = &vertices.of_stroke[corner.stroke];
-    let at = line.iter().position(|&v| v == corner.corner)?;
-    if line.get(at + 1) == Some(&corner.cut) {
+    let (_, forward) = cut_side(line, corner)?;
+    if forward {
         line.last().copied()
     } else {
         line.first().copied()

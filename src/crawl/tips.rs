@@ -6,7 +6,7 @@
 
 use kurbo::Point;
 
-use crate::geometry::polyline::{signed_turn, Polyline};
+use crate::geometry::polyline::{lines_meet, signed_turn, Polyline};
 use crate::raster::bitmap::Bitmap;
 
 /// DECISION: a tip turns by at least this much between its arms, measured over
@@ -198,7 +198,13 @@ fn recover_apex(
     let (far_before, _) = walk.at(i, -(rounded + line))?;
     let (near_after, keep_after) = walk.at(i, rounded)?;
     let (far_after, _) = walk.at(i, rounded + line)?;
-    let apex = lines_meet(far_before, near_before, far_after, near_after)?;
+    let apex = lines_meet(
+        far_before,
+        near_before,
+        far_after,
+        near_after,
+        PARALLEL_SINE,
+    )?;
     // The apex lies ahead of both arms' rounded ends and not far from the curve.
     let ahead = |far: Point, near: Point| (apex - near).dot(near - far) > 0.0;
     // It lies beyond the rounded vertex, seen from the arms: recovering a tip never shortens it.
@@ -244,18 +250,6 @@ fn recover_apex(
 /// Lines whose angle's sine is below this are parallel: they would meet about a billion times
 /// farther off than they lie apart, far beyond [`MAX_APEX_SHIFT_IN_PEN_WIDTHS`].
 const PARALLEL_SINE: f64 = 1e-9;
-
-/// Where the line through `a0 → a1` meets the line through `b0 → b1`; none for near-parallel
-/// lines.
-fn lines_meet(a0: Point, a1: Point, b0: Point, b1: Point) -> Option<Point> {
-    let (da, db) = (a1 - a0, b1 - b0);
-    let denominator = da.cross(db);
-    if denominator.abs() < PARALLEL_SINE * da.hypot() * db.hypot() {
-        return None;
-    }
-    let t = (b0 - a0).cross(db) / denominator;
-    Some(a0 + da * t)
-}
 
 /// Whether every point of the segment `a`–`b` lies within `reach` of an ink pixel's centre.
 fn segment_near_ink(mask: &Bitmap, a: Point, b: Point, reach: f64) -> bool {

@@ -145,6 +145,27 @@ pub(crate) fn signed_turn(incoming: Vec2, outgoing: Vec2) -> f64 {
     incoming.cross(outgoing).atan2(incoming.dot(outgoing))
 }
 
+/// Where the line through `a0 → a1` meets the line through `b0 → b1`; none for lines whose
+/// angle's sine is below `min_sine` (near-parallel), or where either is a single point.
+pub(crate) fn lines_meet(
+    a0: Point,
+    a1: Point,
+    b0: Point,
+    b1: Point,
+    min_sine: f64,
+) -> Option<Point> {
+    let (da, db) = (a1 - a0, b1 - b0);
+    let denominator = da.cross(db);
+    if da.hypot() == 0.0
+        || db.hypot() == 0.0
+        || denominator.abs() < min_sine * da.hypot() * db.hypot()
+    {
+        return None;
+    }
+    let t = (b0 - a0).cross(db) / denominator;
+    Some(a0 + da * t)
+}
+
 /// The distance from `p` to the nearest point of the segment `line`.
 pub(crate) fn distance_to_segment(p: Point, line: kurbo::Line) -> f64 {
     use kurbo::ParamCurveNearest;

@@ -280,8 +280,8 @@ enum BandEnd {
 /// `min_run` stretches long ([`BAND_END_MIN_RUN_IN_STRETCHES`] for a lone dash,
 /// [`BAND_END_MIN_RUN_FROM_JUNCTION_IN_STRETCHES`] for a band out of a junction), the end beyond
 /// it (a spike's tip, where its sides close in) no longer than [`BAND_END_MAX_TIP_SHARE`] of the
-/// run, and the stroke on the other side at least [`BAND_END_MIN_STROKE_IN_STRETCHES`] long. The nearer end wins when both would
-/// do.
+/// run, and the stroke on the other side at least [`BAND_END_MIN_STROKE_IN_STRETCHES`] long. The
+/// nearer end wins when both would do.
 ///
 /// DECISION: (stop 32) where the longest run alone is no band over one end, runs that are wide
 /// all along (their median width) with at most [`BAND_GAP_REACH_IN_PEN_WIDTHS`] of one stroke's
