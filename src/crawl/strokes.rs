@@ -869,8 +869,15 @@ mod tests {
         let curves = connect(&strokes, Method::Strokes, 4.0, 3.0);
         assert_eq!(curves.len(), 1, "{curves:?}");
         assert!(curves[0].closed);
-        let total: usize = strokes.iter().map(|s| s.line.points.len()).sum();
-        assert_eq!(curves[0].points.len(), total);
+        // Every stroke's points are on it (its gaps bridged along the circle add more).
+        let on_curve: HashSet<PointKey> = curves[0].points.iter().map(|&p| point_key(p)).collect();
+        for stroke in &strokes {
+            assert!(stroke
+                .line
+                .points
+                .iter()
+                .all(|&p| on_curve.contains(&point_key(p))));
+        }
     }
 
     #[test]
@@ -888,6 +895,28 @@ mod tests {
         let curves = connect(&strokes, Method::Strokes, 3.5, 7.0);
         assert_eq!(curves.len(), 1, "{curves:?}");
         assert!(curves[0].closed, "the circle stays open: {curves:?}");
+    }
+
+    #[test]
+    fn a_circles_closing_gap_is_bridged_along_the_circle() {
+        // The thick pen's circle above: its closing gap of 58° is 44 px across, and its chord
+        // would pass 5.6 px inside the circle at its middle. Bridged along the arc the strokes
+        // go on round, every stretch of the closed curve stays on the circle.
+        let mut strokes = Vec::new();
+        let mut angle = 0.0;
+        for _ in 0..5 {
+            strokes.push(arc((100.0, 100.0), 45.0, angle, angle + 38.8, 3.5));
+            angle += 38.8 + 27.0;
+        }
+        let curves = connect(&strokes, Method::Strokes, 3.5, 7.0);
+        assert_eq!(curves.len(), 1, "{curves:?}");
+        let points = &curves[0].points;
+        let centre = Point::new(100.0, 100.0);
+        for (k, p) in points.iter().enumerate() {
+            let middle = p.midpoint(points[(k + 1) % points.len()]);
+            let off = (middle.distance(centre) - 45.0).abs();
+            assert!(off < 1.0, "{off:.2} px off the circle at {middle:?}");
+        }
     }
 
     #[test]
