@@ -2042,17 +2042,18 @@ const LOST_SIDE_MAX_APEX_DEGREES: f64 = 60.0;
 /// animal's ear, a star's point), the side that reaches the tip ends at its apex and the other
 /// end lies back at the tip's base, where the outline turned into the lost side: the bridge
 /// turns back by more than 120° at the apex, more than a straight bridge may, and the lines of
-/// the two ends do not meet ahead of both; where the ends point apart by less than a right angle
-/// no step fits either ([`step_shape`]). Two free ends of different strokes that point apart by more than 45°
-/// (ends that point the same way are a band's or a cusp's, [`cusp_shape`]; two lines side by
-/// side point the same way) are joined straight, last of all with the cusps and steps
-/// ([`CUSP_COST_OFFSET`]) and within the ordinary gap limit, where one of them is an apex: the
-/// other lies back along its stroke within [`LOST_SIDE_MAX_APEX_DEGREES`] of it, and the other's
-/// own way turns by at most [`MAX_STRAIGHT_TURN_DEGREES`] into the bridge (the tip's base is a
-/// corner no sharper than a straight bridge's turn). The apex is put back half a pen width on,
-/// as at every corner that is an end ([`uneroded`]). Measured on the benchmark: seed 1 +1 (a
-/// thick animal's ears), seeds 3 and 5 and validation unchanged, seed 4 +1, none lost; an apex
-/// of 45° at most measured the same on seeds 1, 3 and 5.
+/// the two ends do not meet ahead of both; where the ends point apart by less than a right
+/// angle no step fits either ([`step_shape`]). Two free ends of different strokes that point
+/// apart by more than 45° (ends that point the same way are a band's or a cusp's,
+/// [`cusp_shape`]; two lines side by side point the same way) are joined through the apex, last
+/// of all with the cusps and steps ([`CUSP_COST_OFFSET`]) and within the ordinary gap limit,
+/// where one of them is an apex: the other lies back along its stroke within
+/// [`LOST_SIDE_MAX_APEX_DEGREES`] of it, and the other's own way turns by at most
+/// [`MAX_STRAIGHT_TURN_DEGREES`] into the bridge (the tip's base is a corner no sharper than a
+/// straight bridge's turn). The apex is put back half a pen width on, as at every corner that
+/// is an end ([`uneroded`]). Measured on the benchmark: seed 1 +1 (a thick animal's ears),
+/// seeds 3 and 5 and validation unchanged, seed 4 +1, none lost; an apex of 45° at most
+/// measured the same on seeds 1, 3 and 5.
 fn lost_side_shape(a: &BridgeableEnd, b: &BridgeableEnd, stroke_width: f64) -> Option<BridgeShape> {
     let (ua, ub) = free_ends_ways(a, b)?;
     if a.stroke == b.stroke || ua.dot(ub) >= SAME_WAY_COSINE {
