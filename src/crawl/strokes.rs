@@ -880,35 +880,34 @@ mod tests {
         }
     }
 
-    #[test]
-    fn a_thick_pens_small_circle_closes_across_its_widest_gap() {
-        // A circle 45 px across in radius drawn with a 7 px pen in five strokes: four pen
-        // lifts of 27° (21 px between the skeleton's ends, 14 px of paper) and the gap where
-        // the pen came back, 58° (44 px, 15.5 % of the loop, but 37 px of paper, 13 %). It is
-        // the loop's clear closing gap, 2.4 typical gaps wide: the share counts its paper.
+    /// A circle of radius 45 px about (100, 100) drawn with a 7 px pen in five strokes: four pen
+    /// lifts of 27° (21 px between the skeleton's ends, 14 px of paper) and the gap where the
+    /// pen came back, 58° (44 px, 15.5 % of the loop, but 37 px of paper, 13 %).
+    fn thick_pens_small_circle() -> Vec<Stroke> {
         let mut strokes = Vec::new();
         let mut angle = 0.0;
         for _ in 0..5 {
             strokes.push(arc((100.0, 100.0), 45.0, angle, angle + 38.8, 3.5));
             angle += 38.8 + 27.0;
         }
-        let curves = connect(&strokes, Method::Strokes, 3.5, 7.0);
+        strokes
+    }
+
+    #[test]
+    fn a_thick_pens_small_circle_closes_across_its_widest_gap() {
+        // The closing gap is the loop's clear closing gap, 2.4 typical gaps wide: the share
+        // counts its paper.
+        let curves = connect(&thick_pens_small_circle(), Method::Strokes, 3.5, 7.0);
         assert_eq!(curves.len(), 1, "{curves:?}");
         assert!(curves[0].closed, "the circle stays open: {curves:?}");
     }
 
     #[test]
     fn a_circles_closing_gap_is_bridged_along_the_circle() {
-        // The thick pen's circle above: its closing gap of 58° is 44 px across, and its chord
-        // would pass 5.6 px inside the circle at its middle. Bridged along the arc the strokes
-        // go on round, every stretch of the closed curve stays on the circle.
-        let mut strokes = Vec::new();
-        let mut angle = 0.0;
-        for _ in 0..5 {
-            strokes.push(arc((100.0, 100.0), 45.0, angle, angle + 38.8, 3.5));
-            angle += 38.8 + 27.0;
-        }
-        let curves = connect(&strokes, Method::Strokes, 3.5, 7.0);
+        // The thick pen's circle: its closing gap of 58° is 44 px across, and its chord would
+        // pass 5.6 px inside the circle at its middle. Bridged along the arc the strokes go on
+        // round, every stretch of the closed curve stays on the circle.
+        let curves = connect(&thick_pens_small_circle(), Method::Strokes, 3.5, 7.0);
         assert_eq!(curves.len(), 1, "{curves:?}");
         let points = &curves[0].points;
         let centre = Point::new(100.0, 100.0);
