@@ -14,6 +14,7 @@ mod closure;
 pub mod neighbours;
 pub mod reconstruct;
 pub mod robust;
+pub mod spikes;
 pub mod strokes;
 mod through;
 pub mod tips;

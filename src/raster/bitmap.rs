@@ -91,6 +91,31 @@ impl Bitmap {
             && self.pixels[y as usize * self.width + x as usize] != 0
     }
 
+    /// The width of ink across `point` along the unit vector `normal`, counted in steps of
+    /// `step` pixels up to `reach` to either side; 0 when `point` is off the ink. Used to tell
+    /// a band of two merged strokes from one stroke.
+    pub(crate) fn ink_across(
+        &self,
+        point: kurbo::Point,
+        normal: kurbo::Vec2,
+        step: f64,
+        reach: f64,
+    ) -> f64 {
+        let ink = |q: kurbo::Point| self.get_signed(q.x.floor() as isize, q.y.floor() as isize);
+        if !ink(point) {
+            return 0.0;
+        }
+        let mut width = step;
+        for sign in [1.0, -1.0] {
+            let mut t = step;
+            while t < reach && ink(point + normal * (sign * t)) {
+                t += step;
+                width += step;
+            }
+        }
+        width
+    }
+
     /// Sets (x, y) to ink or background. Panics outside the bitmap.
     #[inline]
     pub fn set(&mut self, x: usize, y: usize, ink: bool) {

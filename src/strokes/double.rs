@@ -179,19 +179,7 @@ const CROSS_STEP_PX: f64 = 0.25;
 
 /// The width of ink across `point` along the unit vector `normal`, at most `limit`; 0 off the ink.
 fn cross_width(mask: &Bitmap, point: Point, normal: Vec2, limit: f64) -> f64 {
-    let ink = |q: Point| mask.get_signed(q.x.floor() as isize, q.y.floor() as isize);
-    if !ink(point) {
-        return 0.0;
-    }
-    let mut width = CROSS_STEP_PX;
-    for sign in [1.0, -1.0] {
-        let mut t = CROSS_STEP_PX;
-        while t < limit / 2.0 && ink(point + normal * (sign * t)) {
-            t += CROSS_STEP_PX;
-            width += CROSS_STEP_PX;
-        }
-    }
-    width
+    mask.ink_across(point, normal, CROSS_STEP_PX, limit / 2.0)
 }
 
 /// How many skeleton points (a pixel apart, or a diagonal's) cover `length` pixels: at least
