@@ -8,7 +8,7 @@ use std::time::{Duration, Instant};
 
 use image::{DynamicImage, GrayImage};
 
-use crate::crawl::spikes::fold_collapsed_spikes;
+use crate::crawl::spikes::{fold_collapsed_spikes, join_free_ends_to_spike_tips};
 use crate::crawl::strokes::{connect, Method};
 use crate::crawl::tips::restore_tips;
 use crate::files::{open_regular_file, ReadError};
@@ -171,6 +171,7 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
     let mut curves = connect(&sampled, options.method, spacing, stroke_width);
     if options.method == Method::Strokes {
         fold_collapsed_spikes(&mut curves, &raster.mask, stroke_width);
+        join_free_ends_to_spike_tips(&mut curves, &raster.mask, stroke_width);
         restore_tips(&mut curves, &raster.mask, stroke_width);
     }
     watch.lap(&mut report, "reconstruct");
