@@ -13,6 +13,7 @@ use std::collections::HashMap;
 use crate::geometry::grid::PointGrid;
 use crate::geometry::polyline::{distance_to_segment, Polyline};
 use crate::raster::bitmap::Bitmap;
+use crate::strokes::ink_width_across;
 
 /// A hanging curve's base lies on a closed curve, and its tip away from every other curve,
 /// within this much (pen widths): where the crawl ends a curve at a junction, its end lies on the
@@ -34,12 +35,6 @@ const SPIKE_WIDTH_RATIO: f64 = 1.2;
 
 /// ... measured at this many points at least, so that no single pixel step decides.
 const MIN_MEASURED_POINTS: usize = 3;
-
-/// The step along a cross-section, in pixels.
-const CROSS_STEP_PX: f64 = 0.25;
-
-/// Cross-sections are not followed further than this (pen widths): a blob is not a band.
-const MAX_CROSS_WIDTH_IN_PEN_WIDTHS: f64 = 6.0;
 
 /// Folds every collapsed spike of `curves` into the closed curve its base stands on: the
 /// outline runs from the base out to the tip and back ([`SPIKE_WIDTH_RATIO`]).
@@ -153,7 +148,7 @@ pub fn join_free_ends_to_spike_tips(curves: &mut Vec<Polyline>, mask: &Bitmap, s
         }
         for start in [true, false] {
             let tip = CurveEnd { curve: c, start };
-            let points = tip.points_from(curves);
+            let points = tip.end_piece(curves, MAX_SPIKE_END_IN_PEN_WIDTHS * stroke_width);
             let typical = *typical.get_or_insert_with(|| {
                 median_width(curves.iter(), mask, stroke_width).unwrap_or(f64::INFINITY)
             });
@@ -222,6 +217,36 @@ impl CurveEnd {
             points.reverse();
         }
         points
+    }
+
+    /// The curve's points from this end as far as the first one more than `length` along it
+    /// (or the whole curve, if shorter), and the point after that: all [`spike_root`] reads.
+    fn end_piece(self, curves: &[Polyline], length: f64) -> Vec<Point> {
+        let points = &curves[self.curve].points;
+        let n = points.len();
+        let from_end = (0..n).map(|k| {
+            if self.start {
+                points[k]
+            } else {
+                points[n - 1 - k]
+            }
+        });
+        let mut piece: Vec<Point> = Vec::new();
+        let mut along = 0.0;
+        let mut past = 0;
+        for point in from_end {
+            if let Some(&last) = piece.last() {
+                along += last.distance(point);
+            }
+            piece.push(point);
+            if along > length {
+                past += 1;
+                if past == 2 {
+                    break;
+                }
+            }
+        }
+        piece
     }
 
     /// The curve's other end.
@@ -380,8 +405,7 @@ fn width_at(points: &[Point], k: usize, mask: &Bitmap, stroke_width: f64) -> Opt
         return None;
     }
     let normal = Vec2::new(-along.y / length, along.x / length);
-    let reach = MAX_CROSS_WIDTH_IN_PEN_WIDTHS * stroke_width / 2.0;
-    let width = mask.ink_across(points[k], normal, CROSS_STEP_PX, reach);
+    let width = ink_width_across(mask, points[k], normal, stroke_width);
     (width > 0.0).then_some(width)
 }
 

@@ -310,12 +310,18 @@ fn hairpin_end(walk: &ArcWalk, i: usize, mask: &Bitmap, stroke_width: f64) -> Op
         return None;
     }
     let limit = MAX_HAIRPIN_REACH_IN_PEN_WIDTHS * stroke_width;
-    let mut inside = 0.0;
-    while ink(here + axis * (inside + INK_CHECK_STEP_PX)) {
-        inside += INK_CHECK_STEP_PX;
-        if inside > limit {
-            return None;
+    // How far the ink runs on from `from` going `way`, in steps, until it ends or the run
+    // passes `limit`.
+    let run = |from: Point, way: Vec2| {
+        let mut t = 0.0;
+        while t <= limit && ink(from + way * (t + INK_CHECK_STEP_PX)) {
+            t += INK_CHECK_STEP_PX;
         }
+        t
+    };
+    let inside = run(here, axis);
+    if inside > limit {
+        return None;
     }
     // The ink's edge lies between the last sample on ink and the first off it.
     let shift = inside + INK_CHECK_STEP_PX / 2.0 - stroke_width / 2.0;
@@ -326,13 +332,8 @@ fn hairpin_end(walk: &ArcWalk, i: usize, mask: &Bitmap, stroke_width: f64) -> Op
     // Across the end: the pen's centre runs from half a pen width inside the ink's edge on one
     // side to as far inside on the other; a band's flat end has two corners.
     let across = Vec2::new(-axis.y, axis.x);
-    let extent = |sign: f64| {
-        let mut t = 0.0;
-        while t <= limit && ink(centre + across * (sign * (t + INK_CHECK_STEP_PX))) {
-            t += INK_CHECK_STEP_PX;
-        }
-        t + INK_CHECK_STEP_PX / 2.0 - stroke_width / 2.0
-    };
+    let extent =
+        |sign: f64| run(centre, across * sign) + INK_CHECK_STEP_PX / 2.0 - stroke_width / 2.0;
     let (left, right) = (extent(1.0), extent(-1.0));
     let (apex, far_corner) = if left + right >= MIN_FLAT_END_PX {
         let (a, b) = (centre + across * left, centre - across * right);

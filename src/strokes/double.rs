@@ -177,9 +177,17 @@ const MAX_SIDE_OFFSET_IN_PEN_WIDTHS: f64 = 1.0;
 /// sub-pixel widths.
 const CROSS_STEP_PX: f64 = 0.25;
 
-/// The width of ink across `point` along the unit vector `normal`, at most `limit`; 0 off the ink.
-fn cross_width(mask: &Bitmap, point: Point, normal: Vec2, limit: f64) -> f64 {
-    mask.ink_across(point, normal, CROSS_STEP_PX, limit / 2.0)
+/// The width of ink across `point` along the unit vector `normal`, in steps of
+/// [`CROSS_STEP_PX`] and at most [`MAX_CROSS_WIDTH_IN_PEN_WIDTHS`]; 0 off the ink. The measure a
+/// band is told by, here and where the crawl's collapsed spikes are ([`crate::crawl::spikes`]).
+pub(crate) fn ink_width_across(
+    mask: &Bitmap,
+    point: Point,
+    normal: Vec2,
+    stroke_width: f64,
+) -> f64 {
+    let reach = MAX_CROSS_WIDTH_IN_PEN_WIDTHS * stroke_width / 2.0;
+    mask.ink_across(point, normal, CROSS_STEP_PX, reach)
 }
 
 /// How many skeleton points (a pixel apart, or a diagonal's) cover `length` pixels: at least
@@ -233,11 +241,10 @@ fn corner_vertices(points: &[Point], arm: f64) -> Vec<Point> {
 /// The ink width across each point of `points` (skeleton pixel centres along a branch); `None`
 /// where the direction is undefined.
 fn widths_along(mask: &Bitmap, points: &[Point], stroke_width: f64) -> Vec<Option<f64>> {
-    let limit = MAX_CROSS_WIDTH_IN_PEN_WIDTHS * stroke_width;
     (0..points.len())
         .map(|k| {
             normal_at(points, k, stroke_width)
-                .map(|normal| cross_width(mask, points[k], normal, limit))
+                .map(|normal| ink_width_across(mask, points[k], normal, stroke_width))
         })
         .collect()
 }

@@ -23,6 +23,7 @@ use graph::SkeletonGraph;
 use prune::CornerSpurs;
 
 pub use dots::{split_dots, Dot};
+pub(crate) use double::ink_width_across;
 pub(crate) use sample::MIN_LOOP_SAMPLES;
 pub use sample::{
     default_spacing, minimum_spacing, sample_strokes, simplification_tolerance, MIN_SPACING_PX,
