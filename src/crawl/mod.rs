@@ -11,6 +11,7 @@ pub mod algorithm;
 mod bands;
 mod bridges;
 mod closure;
+pub mod contacts;
 pub mod neighbours;
 pub mod reconstruct;
 pub mod robust;

@@ -1,0 +1,233 @@
+//! Outlines that touch themselves: where two closed curves of the crawl touch (their centre lines
+//! come within a couple of pen widths with nothing but ink between them), they are one outline
+//! that comes back to itself there, a leg's foot standing on the next leg or a narrow leg traced
+//! round as a loop of its own, and the smaller is spliced into the larger at the contact (issue 9,
+//! "junctions made by contact": the pairing that lets the chains close into one outline). The
+//! paper (Parakkat & Muthuganapathy 2016) closes each cycle on its own; this rule is ours.
+
+use kurbo::{Point, Rect};
+
+use crate::geometry::grid::PointGrid;
+use crate::geometry::polyline::Polyline;
+use crate::raster::bitmap::Bitmap;
+
+/// Two closed curves touch where a point of one lies within this much (pen widths) of a point of
+/// the other and the straight line between them runs on ink all the way.
+// DECISION: (stop 37) two pen widths, with the ink between as the test: two outlines whose ink
+// merged (a foot whose toe stands on the next leg, a leg whose sides the skeleton kept as a loop
+// beside the body's line) have nothing but ink between their centre lines, while two shapes of
+// line art drawn near each other have paper between. Measured on the benchmark: seeds 1, 3, 5
+// 377 → 379, 368 → 371, 364 → 365 (animals, meanders), validation 366 → 370 (two of them line
+// art), seed 4 366 → 368, none lost; one, two and three pen widths the same. Without the ink
+// test (and only for loops inside another), 2.5 pen widths joined a nested shape and a cloud to
+// their neighbours on seed 5.
+const CONTACT_IN_PEN_WIDTHS: f64 = 2.0;
+
+/// The step (pixels) at which the line between two touching points is read on the mask.
+const INK_STEP_PX: f64 = 0.5;
+
+/// Splices every closed curve of `curves` that touches a larger closed curve into it, at the
+/// nearest contact ([`CONTACT_IN_PEN_WIDTHS`]): the larger curve runs across to the smaller,
+/// round it, and back. Smaller curves are joined first, each to the nearest larger one it
+/// touches, so a chain of touching loops becomes one outline.
+pub fn join_touching_loops(curves: &mut Vec<Polyline>, mask: &Bitmap, stroke_width: f64) {
+    if stroke_width <= 0.0 {
+        return;
+    }
+    let reach = CONTACT_IN_PEN_WIDTHS * stroke_width;
+    let closed: Vec<usize> = (0..curves.len())
+        .filter(|&c| curves[c].closed && curves[c].points.len() >= 3)
+        .collect();
+    if closed.len() < 2 {
+        return;
+    }
+    let boxes: Vec<Rect> = closed
+        .iter()
+        .map(|&c| bounds(&curves[c].points).inflate(reach, reach))
+        .collect();
+    // Smallest first (ties by position in the list, for byte-identical output).
+    let mut order: Vec<usize> = (0..closed.len()).collect();
+    order.sort_by(|&a, &b| boxes[a].area().total_cmp(&boxes[b].area()).then(a.cmp(&b)));
+    let rank: Vec<usize> = {
+        let mut rank = vec![0; closed.len()];
+        for (r, &i) in order.iter().enumerate() {
+            rank[i] = r;
+        }
+        rank
+    };
+    // The larger curves a curve may touch are those whose grown boxes overlap its own, found
+    // along the boxes sorted by their left edge.
+    let mut by_left: Vec<usize> = (0..closed.len()).collect();
+    by_left.sort_by(|&a, &b| boxes[a].x0.total_cmp(&boxes[b].x0).then(a.cmp(&b)));
+    let mut joined = vec![false; curves.len()];
+    for &i in &order {
+        let small = closed[i];
+        let right_of_box = by_left.partition_point(|&j| boxes[j].x0 <= boxes[i].x1);
+        let mut nearest: Option<Contact> = None;
+        for &j in &by_left[..right_of_box] {
+            let large = closed[j];
+            if rank[j] < rank[i] || j == i || joined[large] {
+                continue;
+            }
+            if boxes[j].intersect(boxes[i]).area() <= 0.0 {
+                continue;
+            }
+            if let Some(contact) = nearest_contact(curves, small, large, mask, reach) {
+                if nearest
+                    .as_ref()
+                    .is_none_or(|best| contact.distance < best.distance)
+                {
+                    nearest = Some(contact);
+                }
+            }
+        }
+        let Some(contact) = nearest else {
+            continue;
+        };
+        splice_at_contact(curves, small, &contact);
+        joined[small] = true;
+    }
+    let mut k = 0;
+    curves.retain(|_| {
+        k += 1;
+        !joined[k - 1]
+    });
+}
+
+/// Where a smaller closed curve touches a larger one: the larger curve's point `at_large` and
+/// the smaller's `at_small`, `distance` apart.
+struct Contact {
+    large: usize,
+    at_large: usize,
+    at_small: usize,
+    distance: f64,
+}
+
+/// The nearest pair of points of `small` and `large` within `reach` of each other with ink all
+/// the way between them.
+fn nearest_contact(
+    curves: &[Polyline],
+    small: usize,
+    large: usize,
+    mask: &Bitmap,
+    reach: f64,
+) -> Option<Contact> {
+    let mut grid = PointGrid::new(reach.max(1.0));
+    for (k, &p) in curves[large].points.iter().enumerate() {
+        grid.insert(p, k);
+    }
+    let mut nearest: Option<Contact> = None;
+    for (at_small, &q) in curves[small].points.iter().enumerate() {
+        for &at_large in grid.around(q) {
+            let p = curves[large].points[at_large];
+            let distance = p.distance(q);
+            let nearer = nearest.as_ref().is_none_or(|best| distance < best.distance);
+            if distance <= reach && nearer && ink_between(mask, p, q) {
+                nearest = Some(Contact {
+                    large,
+                    at_large,
+                    at_small,
+                    distance,
+                });
+            }
+        }
+    }
+    nearest
+}
+
+/// The larger curve runs from its contact point across to the smaller curve's, once round the
+/// smaller curve, and back.
+fn splice_at_contact(curves: &mut [Polyline], small: usize, contact: &Contact) {
+    let loop_points = &curves[small].points;
+    let mut excursion: Vec<Point> = loop_points[contact.at_small..]
+        .iter()
+        .chain(&loop_points[..=contact.at_small])
+        .copied()
+        .collect();
+    let outline = &mut curves[contact.large].points;
+    excursion.push(outline[contact.at_large]);
+    outline.splice(contact.at_large + 1..contact.at_large + 1, excursion);
+}
+
+/// Whether the straight line from `a` to `b` runs on ink all the way.
+fn ink_between(mask: &Bitmap, a: Point, b: Point) -> bool {
+    let steps = (a.distance(b) / INK_STEP_PX).ceil().max(1.0) as usize;
+    (0..=steps).all(|k| {
+        let p = a.lerp(b, k as f64 / steps as f64);
+        mask.get_signed(p.x.floor() as isize, p.y.floor() as isize)
+    })
+}
+
+/// The bounding box of `points` (at least one).
+fn bounds(points: &[Point]) -> Rect {
+    points
+        .iter()
+        .fold(Rect::from_points(points[0], points[0]), |r, &p| {
+            r.union_pt(p)
+        })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::join_touching_loops;
+    use crate::geometry::polyline::Polyline;
+    use crate::raster::bitmap::Bitmap;
+    use crate::raster::clean::tests::draw_line;
+    use kurbo::Point;
+
+    const PEN: f64 = 3.0;
+
+    /// A closed polyline through the corners, a point every 2 px as the crawl's samples are,
+    /// and its ink drawn on `mask`.
+    fn outline(mask: &mut Bitmap, corners: &[(f64, f64)]) -> Polyline {
+        for k in 0..corners.len() {
+            draw_line(mask, corners[k], corners[(k + 1) % corners.len()], PEN);
+        }
+        Polyline::new(
+            corners.iter().map(|&(x, y)| Point::new(x, y)).collect(),
+            true,
+        )
+        .resample(2.0)
+    }
+
+    #[test]
+    fn a_loop_whose_ink_touches_the_outline_is_spliced_into_it() {
+        // A body and, below it, a narrow leg whose ink runs into the body's: the crawl traced
+        // the leg as a loop of its own, its top 2 px below the body's line.
+        let mut mask = Bitmap::new(120, 120);
+        let body = outline(
+            &mut mask,
+            &[(10.0, 10.0), (110.0, 10.0), (110.0, 50.0), (10.0, 50.0)],
+        );
+        let leg = outline(
+            &mut mask,
+            &[(50.0, 52.0), (56.0, 52.0), (56.0, 100.0), (50.0, 100.0)],
+        );
+        let (body_points, leg_points) = (body.points.len(), leg.points.len());
+        let mut curves = vec![body, leg];
+        join_touching_loops(&mut curves, &mask, PEN);
+        assert_eq!(curves.len(), 1, "one outline");
+        assert!(curves[0].closed);
+        // Round the leg (its points and the first again) and back to the body's point.
+        assert_eq!(curves[0].points.len(), body_points + leg_points + 2);
+        assert!(curves[0].points.iter().any(|p| (p.y - 100.0).abs() < 1e-9));
+    }
+
+    #[test]
+    fn two_shapes_with_paper_between_stay_apart() {
+        // The same leg 5 px below the body's line: less than two pen widths between the centre
+        // lines, but paper between the inks.
+        let mut mask = Bitmap::new(120, 120);
+        let body = outline(
+            &mut mask,
+            &[(10.0, 10.0), (110.0, 10.0), (110.0, 50.0), (10.0, 50.0)],
+        );
+        let leg = outline(
+            &mut mask,
+            &[(50.0, 55.5), (56.0, 55.5), (56.0, 100.0), (50.0, 100.0)],
+        );
+        let mut curves = vec![body, leg];
+        join_touching_loops(&mut curves, &mask, PEN);
+        assert_eq!(curves.len(), 2);
+    }
+}
