@@ -348,10 +348,9 @@ mod tests {
         .resample(2.0)
     }
 
-    #[test]
-    fn a_loop_whose_ink_touches_the_outline_is_spliced_into_it() {
-        // A body and, below it, a narrow leg whose ink runs into the body's: the crawl traced
-        // the leg as a loop of its own, its top 2 px below the body's line.
+    /// A body (100 × 40 px) and below it a narrow leg whose top lies at `leg_top`, each traced
+    /// by the crawl as a loop of its own, with their ink.
+    fn body_and_leg(leg_top: f64) -> (Bitmap, Vec<Polyline>) {
         let mut mask = Bitmap::new(120, 120);
         let body = outline(
             &mut mask,
@@ -359,32 +358,34 @@ mod tests {
         );
         let leg = outline(
             &mut mask,
-            &[(50.0, 52.0), (56.0, 52.0), (56.0, 100.0), (50.0, 100.0)],
+            &[
+                (50.0, leg_top),
+                (56.0, leg_top),
+                (56.0, 100.0),
+                (50.0, 100.0),
+            ],
         );
-        let (body_points, leg_points) = (body.points.len(), leg.points.len());
-        let mut curves = vec![body, leg];
+        (mask, vec![body, leg])
+    }
+
+    #[test]
+    fn a_loop_whose_ink_touches_the_outline_is_spliced_into_it() {
+        // The leg's top 2 px below the body's line: their inks run into each other.
+        let (mask, mut curves) = body_and_leg(52.0);
+        let points: usize = curves.iter().map(|c| c.points.len()).sum();
         join_touching_loops(&mut curves, &mask, PEN);
         assert_eq!(curves.len(), 1, "one outline");
         assert!(curves[0].closed);
         // Round the leg (its points and the first again) and back to the body's point.
-        assert_eq!(curves[0].points.len(), body_points + leg_points + 2);
+        assert_eq!(curves[0].points.len(), points + 2);
         assert!(curves[0].points.iter().any(|p| (p.y - 100.0).abs() < 1e-9));
     }
 
     #[test]
     fn two_shapes_with_paper_between_stay_apart() {
-        // The same leg 5 px below the body's line: less than two pen widths between the centre
-        // lines, but paper between the inks.
-        let mut mask = Bitmap::new(120, 120);
-        let body = outline(
-            &mut mask,
-            &[(10.0, 10.0), (110.0, 10.0), (110.0, 50.0), (10.0, 50.0)],
-        );
-        let leg = outline(
-            &mut mask,
-            &[(50.0, 55.5), (56.0, 55.5), (56.0, 100.0), (50.0, 100.0)],
-        );
-        let mut curves = vec![body, leg];
+        // The leg's top 5.5 px below the body's line: less than two pen widths between the
+        // centre lines, but paper between the inks.
+        let (mask, mut curves) = body_and_leg(55.5);
         join_touching_loops(&mut curves, &mask, PEN);
         assert_eq!(curves.len(), 2);
     }
