@@ -11,8 +11,11 @@
 
 use kurbo::{Point, Rect};
 
+use std::collections::HashMap;
+
+use super::remove_marked;
 use crate::geometry::grid::PointGrid;
-use crate::geometry::polyline::Polyline;
+use crate::geometry::polyline::{nearest_point_index, Polyline};
 use crate::raster::bitmap::Bitmap;
 
 /// Two closed curves touch where a point of one lies within this much (pen widths) of a point of
@@ -64,6 +67,8 @@ pub fn join_touching_loops(curves: &mut Vec<Polyline>, mask: &Bitmap, stroke_wid
     let mut by_left: Vec<usize> = (0..closed.len()).collect();
     by_left.sort_by(|&a, &b| boxes[a].x0.total_cmp(&boxes[b].x0).then(a.cmp(&b)));
     let mut joined = vec![false; curves.len()];
+    // Each larger curve's points by position, built once and again only after a splice.
+    let mut grids: HashMap<usize, PointGrid<usize>> = HashMap::new();
     for &i in &order {
         let small = closed[i];
         let right_of_box = by_left.partition_point(|&j| boxes[j].x0 <= boxes[i].x1);
@@ -76,7 +81,10 @@ pub fn join_touching_loops(curves: &mut Vec<Polyline>, mask: &Bitmap, stroke_wid
             if boxes[j].intersect(boxes[i]).area() <= 0.0 {
                 continue;
             }
-            if let Some(contact) = nearest_contact(curves, small, large, mask, reach) {
+            let grid = grids
+                .entry(large)
+                .or_insert_with(|| points_by_position(&curves[large].points, reach));
+            if let Some(contact) = nearest_contact(curves, small, large, grid, mask, reach) {
                 if nearest
                     .as_ref()
                     .is_none_or(|best| contact.distance < best.distance)
@@ -89,13 +97,10 @@ pub fn join_touching_loops(curves: &mut Vec<Polyline>, mask: &Bitmap, stroke_wid
             continue;
         };
         splice_at_contact(curves, small, &contact);
+        grids.remove(&contact.large);
         joined[small] = true;
     }
-    let mut k = 0;
-    curves.retain(|_| {
-        k += 1;
-        !joined[k - 1]
-    });
+    remove_marked(curves, &joined);
 }
 
 /// Where a smaller closed curve touches a larger one: the larger curve's point `at_large` and
@@ -107,19 +112,25 @@ struct Contact {
     distance: f64,
 }
 
-/// The nearest pair of points of `small` and `large` within `reach` of each other with ink all
-/// the way between them.
+/// The indices of `points`, by position, in cells `reach` wide (at least a pixel).
+fn points_by_position(points: &[Point], reach: f64) -> PointGrid<usize> {
+    let mut grid = PointGrid::new(reach.max(1.0));
+    for (k, &p) in points.iter().enumerate() {
+        grid.insert(p, k);
+    }
+    grid
+}
+
+/// The nearest pair of points of `small` and `large` (whose points `grid` holds,
+/// [`points_by_position`]) within `reach` of each other with ink all the way between them.
 fn nearest_contact(
     curves: &[Polyline],
     small: usize,
     large: usize,
+    grid: &PointGrid<usize>,
     mask: &Bitmap,
     reach: f64,
 ) -> Option<Contact> {
-    let mut grid = PointGrid::new(reach.max(1.0));
-    for (k, &p) in curves[large].points.iter().enumerate() {
-        grid.insert(p, k);
-    }
     let mut nearest: Option<Contact> = None;
     for (at_small, &q) in curves[small].points.iter().enumerate() {
         for &at_large in grid.around(q) {
@@ -210,18 +221,18 @@ pub fn drop_redundant_arcs(curves: &mut Vec<Polyline>, stroke_width: f64) {
     for (c, curve) in curves.iter().enumerate() {
         if curve.closed && curve.points.len() >= 3 {
             for &p in &curve.points {
-                on_closed.insert(p, c);
+                on_closed.insert(p, (c, p));
             }
         }
     }
     let closed_near = |p: Point| -> Vec<usize> {
-        let mut found: Vec<usize> = Vec::new();
-        for &c in on_closed.around(p) {
-            if !found.contains(&c) && curves[c].points.iter().any(|q| q.distance(p) <= reach) {
-                found.push(c);
-            }
-        }
+        let mut found: Vec<usize> = on_closed
+            .around(p)
+            .filter(|(_, q)| q.distance(p) <= reach)
+            .map(|&(c, _)| c)
+            .collect();
         found.sort_unstable();
+        found.dedup();
         found
     };
     let thetas: Vec<(usize, usize)> = (0..curves.len())
@@ -250,11 +261,7 @@ pub fn drop_redundant_arcs(curves: &mut Vec<Polyline>, stroke_width: f64) {
             removed[open] = true;
         }
     }
-    let mut k = 0;
-    curves.retain(|_| {
-        k += 1;
-        !removed[k - 1]
-    });
+    remove_marked(curves, &removed);
 }
 
 /// The closed curve `ring` with the open curve `arc` between two of its points, made of the two
@@ -270,10 +277,7 @@ fn outline_without_redundant_arc(
     if a.distance(b) <= clearance {
         return None;
     }
-    let nearest = |q: Point| {
-        (0..ring.len()).min_by(|&i, &j| ring[i].distance(q).total_cmp(&ring[j].distance(q)))
-    };
-    let (at_a, at_b) = (nearest(a)?, nearest(b)?);
+    let (at_a, at_b) = (nearest_point_index(ring, a)?, nearest_point_index(ring, b)?);
     if at_a == at_b {
         return None;
     }
@@ -342,13 +346,7 @@ pub fn drop_covered_open_curves(curves: &mut Vec<Polyline>, stroke_width: f64) {
         return;
     }
     let cover = COVERED_IN_PEN_WIDTHS * stroke_width;
-    let samples = |curve: &Polyline| -> Vec<Point> {
-        let mut points = curve.points.clone();
-        if curve.closed {
-            points.extend(curve.points.first());
-        }
-        Polyline::new(points, false).resample(ARC_STEP_PX).points
-    };
+    let samples = |curve: &Polyline| curve.resample(ARC_STEP_PX).points;
     let mut near = PointGrid::new(cover.max(1.0));
     for (c, curve) in curves.iter().enumerate() {
         for p in samples(curve) {
@@ -366,11 +364,7 @@ pub fn drop_covered_open_curves(curves: &mut Vec<Polyline>, stroke_width: f64) {
         });
         removed[o] = covered;
     }
-    let mut k = 0;
-    curves.retain(|_| {
-        k += 1;
-        !removed[k - 1]
-    });
+    remove_marked(curves, &removed);
 }
 
 #[cfg(test)]
@@ -383,17 +377,21 @@ mod tests {
 
     const PEN: f64 = 3.0;
 
-    /// A closed polyline through the corners, a point every 2 px as the crawl's samples are,
-    /// and its ink drawn on `mask`.
+    /// A polyline through the corners, a point every 2 px as the crawl's samples are.
+    fn polyline(corners: &[(f64, f64)], closed: bool) -> Polyline {
+        Polyline::new(
+            corners.iter().map(|&(x, y)| Point::new(x, y)).collect(),
+            closed,
+        )
+        .resample(2.0)
+    }
+
+    /// A closed polyline through the corners ([`polyline`]), and its ink drawn on `mask`.
     fn outline(mask: &mut Bitmap, corners: &[(f64, f64)]) -> Polyline {
         for k in 0..corners.len() {
             draw_line(mask, corners[k], corners[(k + 1) % corners.len()], PEN);
         }
-        Polyline::new(
-            corners.iter().map(|&(x, y)| Point::new(x, y)).collect(),
-            true,
-        )
-        .resample(2.0)
+        polyline(corners, true)
     }
 
     /// A body (100 × 40 px) and below it a narrow leg whose top lies at `leg_top`, each traced
@@ -478,26 +476,14 @@ mod tests {
     #[test]
     fn a_handle_on_an_outline_stays_its_own_curve() {
         // A mug: a square and a handle from its right side out and round, 20 px away.
-        let ring = Polyline::new(
-            vec![
-                Point::new(10.0, 10.0),
-                Point::new(90.0, 10.0),
-                Point::new(90.0, 70.0),
-                Point::new(10.0, 70.0),
-            ],
+        let ring = polyline(
+            &[(10.0, 10.0), (90.0, 10.0), (90.0, 70.0), (10.0, 70.0)],
             true,
-        )
-        .resample(2.0);
-        let handle = Polyline::new(
-            vec![
-                Point::new(90.0, 20.0),
-                Point::new(110.0, 20.0),
-                Point::new(110.0, 60.0),
-                Point::new(90.0, 60.0),
-            ],
+        );
+        let handle = polyline(
+            &[(90.0, 20.0), (110.0, 20.0), (110.0, 60.0), (90.0, 60.0)],
             false,
-        )
-        .resample(2.0);
+        );
         let mut curves = vec![ring.clone(), handle.clone()];
         drop_redundant_arcs(&mut curves, PEN);
         assert_eq!(curves, vec![ring, handle]);
@@ -507,9 +493,7 @@ mod tests {
     fn an_open_curve_inside_another_curves_ink_is_dropped_and_one_beside_it_stays() {
         // A line from (10, 40) to (90, 40), a piece the crawl left half a pen width beside it,
         // and a second line two pen widths away (two lines side by side).
-        let line = |y: f64, from: f64, to: f64| {
-            Polyline::new(vec![Point::new(from, y), Point::new(to, y)], false).resample(2.0)
-        };
+        let line = |y: f64, from: f64, to: f64| polyline(&[(from, y), (to, y)], false);
         let mut curves = vec![
             line(41.5, 30.0, 60.0),
             line(40.0, 10.0, 90.0),

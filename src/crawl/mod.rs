@@ -21,6 +21,13 @@ mod through;
 pub mod tips;
 mod triangulation;
 
+/// Removes the items whose flag in `marked` is set (one flag per item), keeping the others in
+/// order: the curves a post-crawl stage folded or spliced into others.
+pub(crate) fn remove_marked<T>(items: &mut Vec<T>, marked: &[bool]) {
+    let mut flags = marked.iter();
+    items.retain(|_| !flags.next().copied().unwrap_or(false));
+}
+
 /// Why a point set could not be reconstructed.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum ReconstructError {

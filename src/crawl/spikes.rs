@@ -10,8 +10,9 @@ use kurbo::{Line, Point, Vec2};
 
 use std::collections::HashMap;
 
+use super::remove_marked;
 use crate::geometry::grid::PointGrid;
-use crate::geometry::polyline::{distance_to_segment, Polyline};
+use crate::geometry::polyline::{distance_to_segment, nearest_point_index, Polyline};
 use crate::raster::bitmap::Bitmap;
 use crate::strokes::ink_width_across;
 
@@ -83,24 +84,14 @@ pub fn fold_collapsed_spikes(curves: &mut Vec<Polyline>, mask: &Bitmap, stroke_w
         }
         let outline = &mut curves[c].points;
         let base = spike[0];
-        let at = (0..outline.len())
-            .min_by(|&a, &b| {
-                outline[a]
-                    .distance(base)
-                    .total_cmp(&outline[b].distance(base))
-            })
-            .unwrap_or(0);
+        let at = nearest_point_index(outline, base).unwrap_or(0);
         // Out along the spike to its tip and back to its base, then on along the outline.
         let mut excursion = spike.clone();
         excursion.extend(spike.iter().rev().skip(1));
         outline.splice(at + 1..at + 1, excursion);
         folded[i] = true;
     }
-    let mut k = 0;
-    curves.retain(|_| {
-        k += 1;
-        !folded[k - 1]
-    });
+    remove_marked(curves, &folded);
 }
 
 /// A free end within this much (pen widths) of a collapsed spike's root goes on to its tip: gaps

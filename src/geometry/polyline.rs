@@ -166,6 +166,12 @@ pub(crate) fn lines_meet(
     Some(a0 + da * t)
 }
 
+/// The index of the point of `points` nearest to `to` (the first of equally near ones); `None`
+/// for no points.
+pub(crate) fn nearest_point_index(points: &[Point], to: Point) -> Option<usize> {
+    (0..points.len()).min_by(|&a, &b| points[a].distance(to).total_cmp(&points[b].distance(to)))
+}
+
 /// The distance from `p` to the nearest point of the segment `line`.
 pub(crate) fn distance_to_segment(p: Point, line: kurbo::Line) -> f64 {
     use kurbo::ParamCurveNearest;
