@@ -1862,6 +1862,36 @@ mod tests {
     }
 
     #[test]
+    fn an_ear_whose_side_fell_in_a_pen_lift_is_not_cut_off_the_outline() {
+        // A body line with a small ear on it, drawn in skip strokes 8 px apart: one stroke runs
+        // along the body, up the ear's left side and across its top, where it stops; the pen
+        // lifted over the ear's whole right side, and the body goes on from 10 px right of the
+        // ear's left corner, its end pointing at that corner. Going on through the corner would
+        // cut the ear off as a curve of its own, ending in the air; the end steps up to the top's
+        // end instead, and the outline stays one curve.
+        let mut body_and_ear = line((-40.0, 40.0), (0.0, 40.0));
+        body_and_ear.extend(line((0.0, 40.0), (0.0, 28.0)).into_iter().skip(1));
+        body_and_ear.extend(line((0.0, 28.0), (8.0, 28.0)).into_iter().skip(1));
+        let strokes = vec![
+            open(&line((-80.0, 40.0), (-48.0, 40.0))),
+            open(&body_and_ear),
+            open(&line((10.0, 40.0), (40.0, 40.0))),
+            open(&line((48.0, 40.0), (80.0, 40.0))),
+            open(&line((88.0, 40.0), (120.0, 40.0))),
+        ];
+        let curves = connect(&strokes, Method::Strokes, 4.0, 3.0);
+        assert_eq!(curves.len(), 1, "{curves:?}");
+        assert!(
+            runs_between(&curves[0], (-80.0, 40.0), (120.0, 40.0), 2.0),
+            "{curves:?}"
+        );
+        assert!(
+            curves[0].points.contains(&Point::new(8.0, 28.0)),
+            "{curves:?}"
+        );
+    }
+
+    #[test]
     fn a_t_end_is_not_bridged_to_the_stroke_it_ran_into() {
         // An "H"'s left stem pokes 3 px out below the crossbar's junction, curling towards the
         // crossbar's side as thinned stubs do, and then has its gap. The crossbar's T-end is
