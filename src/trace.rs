@@ -8,7 +8,9 @@ use std::time::{Duration, Instant};
 
 use image::{DynamicImage, GrayImage};
 
-use crate::crawl::contacts::{drop_covered_open_curves, drop_redundant_arcs, join_touching_loops};
+use crate::crawl::contacts::{
+    drop_covered_open_curves, drop_redundant_arcs, join_loops_to_open_curves, join_touching_loops,
+};
 use crate::crawl::spikes::{fold_collapsed_spikes, join_free_ends_to_spike_tips};
 use crate::crawl::strokes::{connect, Method};
 use crate::crawl::tips::restore_tips;
@@ -176,6 +178,7 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
         join_touching_loops(&mut curves, &raster.mask, stroke_width);
         drop_redundant_arcs(&mut curves, stroke_width);
         drop_covered_open_curves(&mut curves, stroke_width);
+        join_loops_to_open_curves(&mut curves, &raster.mask, stroke_width);
         restore_tips(&mut curves, &raster.mask, stroke_width);
     }
     watch.lap(&mut report, "reconstruct");
