@@ -760,30 +760,40 @@ impl<'a> Matching<'a> {
             .filter(|end| !end.attached)
             .map(|end| end.vertex)
             .collect();
+        // The open arm end each opened corner left, by the matched bridge.
+        let arm_ends: Vec<Option<u32>> = matched
+            .iter()
+            .map(|m| {
+                let through = m.through.filter(|_| m.cost >= AUGMENT_MAX_COST)?;
+                let arm_end = cut_arm_end(self.vertices, &through)?;
+                (free.contains(&arm_end) && !bridged.contains(&arm_end)).then_some(arm_end)
+            })
+            .collect();
+        let pair = |a: u32, b: u32| (a.min(b), a.max(b));
+        let mut cheapest: HashMap<(u32, u32), Option<&'a Candidate>> = matched
+            .iter()
+            .zip(&arm_ends)
+            .filter_map(|(m, arm_end)| arm_end.map(|arm_end| (pair(m.a, arm_end), None)))
+            .collect();
+        // One pass over the candidates (a page of noise has millions), cheapest first.
+        if !cheapest.is_empty() {
+            for c in self.candidates.iter().filter(|c| c.through.is_none()) {
+                if let Some(best @ None) = cheapest.get_mut(&pair(c.a, c.b)) {
+                    if self.ink_gap(c) <= BRIDGE_MAX_IN_TYPICAL_GAPS * typical_gap {
+                        *best = Some(c);
+                    }
+                }
+            }
+        }
         let mut joined: HashSet<u32> = HashSet::new();
         matched
             .into_iter()
-            .map(|m| {
-                let Some(through) = m.through.filter(|_| m.cost >= AUGMENT_MAX_COST) else {
+            .zip(arm_ends)
+            .map(|(m, arm_end)| {
+                let Some(arm_end) = arm_end else {
                     return m;
                 };
-                let Some(arm_end) = cut_arm_end(self.vertices, &through) else {
-                    return m;
-                };
-                if !free.contains(&arm_end) || bridged.contains(&arm_end) {
-                    return m;
-                }
-                let joins = |c: &&Candidate| {
-                    c.through.is_none()
-                        && ((c.a, c.b) == (m.a, arm_end) || (c.a, c.b) == (arm_end, m.a))
-                        && self.ink_gap(c) <= BRIDGE_MAX_IN_TYPICAL_GAPS * typical_gap
-                };
-                let cheapest = self
-                    .candidates
-                    .iter()
-                    .filter(joins)
-                    .min_by(|x, y| x.cost.total_cmp(&y.cost));
-                match cheapest {
+                match cheapest.get(&pair(m.a, arm_end)).copied().flatten() {
                     Some(bridge) if joined.insert(arm_end) => bridge,
                     _ => m,
                 }

@@ -108,7 +108,8 @@ pub fn join_touching_loops(curves: &mut Vec<Polyline>, mask: &Bitmap, stroke_wid
 /// less: an outline that comes back alongside itself runs on along its own line, while a line
 /// drawn across a shape (a "Q"'s tail, a circle struck through) crosses it steeply and is a
 /// curve of its own.
-// DECISION: (stop 38) 60°. Measured on the benchmark: seeds 1, 3, 5 382 → 384, 373 → 376,
+// DECISION: (stop 38) 60°: a loop and an open curve meeting more steeply cross, and stay two
+// curves. Measured on the benchmark: seeds 1, 3, 5 382 → 384, 373 → 376,
 // 370 → 374 (meanders: spirals whose coils touch, ribbons), the same from 30° to 90° (no angle
 // test at all); validation 372 → 374 at 60° and 90°, 373 at 30° and 45°; seed 4 370 → 375 (374
 // at 30°); none lost. The benchmark draws no line across a closed shape with the ink merged
@@ -129,63 +130,86 @@ pub fn join_loops_to_open_curves(curves: &mut Vec<Polyline>, mask: &Bitmap, stro
         return;
     }
     let reach = CONTACT_IN_PEN_WIDTHS * stroke_width;
-    // Every open curve's points by position, with the curve they belong to.
-    let mut open_points = PointGrid::new(reach.max(1.0));
+    // The loops' points by position (few: a page of noise has half a million open points, and
+    // tens of thousands of closed ones), and their boxes grown by the reach, sorted by their
+    // left edge: only the open curves whose boxes meet one of them are looked along.
+    let mut loop_points = PointGrid::new(reach.max(1.0));
+    let mut loop_boxes: Vec<Rect> = Vec::new();
     for (c, curve) in curves.iter().enumerate() {
-        if !curve.closed && curve.points.len() >= 3 {
+        if curve.closed && curve.points.len() >= 3 {
             for (k, &p) in curve.points.iter().enumerate() {
-                open_points.insert(p, (c, k));
+                loop_points.insert(p, (c, k));
             }
+            loop_boxes.push(bounds(&curve.points).inflate(reach, reach));
         }
     }
+    loop_boxes.sort_by(|a, b| a.x0.total_cmp(&b.x0));
+    let loop_boxes_meeting = |curve: &Polyline| -> Vec<Rect> {
+        let own = bounds(&curve.points);
+        let right_of = loop_boxes.partition_point(|b| b.x0 <= own.x1);
+        loop_boxes[..right_of]
+            .iter()
+            .filter(|b| b.x1 >= own.x0 && b.y0 <= own.y1 && b.y1 >= own.y0)
+            .copied()
+            .collect()
+    };
     let max_cosine_off = TOUCH_MAX_ANGLE_DEGREES.to_radians().cos();
+    // An open curve that ends on a loop (a balloon's string) is tied to it there, and stays a
+    // curve of its own.
+    let mut tied: HashMap<(usize, usize), bool> = HashMap::new();
     // Each loop's nearest contact, found on the curves as the crawl left them.
-    let mut splices: Vec<(usize, Contact)> = Vec::new();
-    for (small, curve) in curves.iter().enumerate() {
-        if !curve.closed || curve.points.len() < 3 {
+    let mut nearest: HashMap<usize, Contact> = HashMap::new();
+    for (large, curve) in curves.iter().enumerate() {
+        if curve.closed || curve.points.len() < 3 {
             continue;
         }
-        // An open curve that ends on the loop (a balloon's string) is tied to it there, and
-        // stays a curve of its own.
-        let mut tied: HashMap<usize, bool> = HashMap::new();
-        let mut ends_on_loop = |large: usize| {
-            *tied.entry(large).or_insert_with(|| {
-                let points = &curves[large].points;
-                [points[0], points[points.len() - 1]]
-                    .iter()
-                    .any(|&end| curve.points.iter().any(|q| q.distance(end) <= reach))
-            })
-        };
-        let mut nearest: Option<Contact> = None;
-        for (at_small, &q) in curve.points.iter().enumerate() {
-            for &(large, at_large) in open_points.around(q) {
-                if ends_on_loop(large) {
-                    continue;
-                }
-                let p = curves[large].points[at_large];
+        let boxes = loop_boxes_meeting(curve);
+        if boxes.is_empty() {
+            continue;
+        }
+        let ends = [curve.points[0], curve.points[curve.points.len() - 1]];
+        for (at_large, &p) in curve.points.iter().enumerate() {
+            // A point in no loop's box touches none: cheaper to tell where the boxes are few.
+            if boxes.len() <= MAX_BOXES_TESTED && !boxes.iter().any(|b| b.contains(p)) {
+                continue;
+            }
+            for &(small, at_small) in loop_points.around(p) {
+                let q = curves[small].points[at_small];
                 let distance = p.distance(q);
-                let nearer = nearest.as_ref().is_none_or(|best| distance < best.distance);
+                let nearer = nearest
+                    .get(&small)
+                    .is_none_or(|best| distance < best.distance);
+                // Cheapest tests first.
                 if distance <= reach
                     && nearer
-                    && direction_at(&curves[large], at_large)
-                        .dot(direction_at(curve, at_small))
+                    && direction_at(curve, at_large)
+                        .dot(direction_at(&curves[small], at_small))
                         .abs()
                         >= max_cosine_off
+                    && !*tied.entry((small, large)).or_insert_with(|| {
+                        ends.iter().any(|&end| {
+                            curves[small]
+                                .points
+                                .iter()
+                                .any(|q| q.distance(end) <= reach)
+                        })
+                    })
                     && ink_between(mask, p, q)
                 {
-                    nearest = Some(Contact {
-                        large,
-                        at_large,
-                        at_small,
-                        distance,
-                    });
+                    nearest.insert(
+                        small,
+                        Contact {
+                            large,
+                            at_large,
+                            at_small,
+                            distance,
+                        },
+                    );
                 }
             }
         }
-        if let Some(contact) = nearest {
-            splices.push((small, contact));
-        }
     }
+    let mut splices: Vec<(usize, Contact)> = nearest.into_iter().collect();
     // Spliced from the end of each open curve backwards, so that the indices of the contacts
     // still to come stay where they were.
     splices.sort_by(|(a, x), (b, y)| (x.large, y.at_large, a).cmp(&(y.large, x.at_large, b)));
@@ -207,6 +231,10 @@ pub fn join_loops_to_open_curves(curves: &mut Vec<Polyline>, mask: &Bitmap, stro
     }
     remove_marked(curves, &joined);
 }
+
+/// An open curve's points are tested against the loops' boxes it meets, where there are at most
+/// this many, before they are looked up among the loops' points.
+const MAX_BOXES_TESTED: usize = 16;
 
 /// The unit direction of `curve` at its point `k`, from the point before to the point after (at
 /// an open curve's ends, from or to the end itself).
