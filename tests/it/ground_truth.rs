@@ -14,8 +14,9 @@ use crawltrace::{to_svg, trace, TraceOptions};
 const KNOWN_FAILURES: &[(&str, &str)] = &[
     (
         "cat-fork-clean.png",
-        "the cat's outline closes, but the end of its tail, a band of ink the outline goes out \
-         and back along, also comes out as an open curve of its own; two of the fork's four \
+        "the cat's outline and the end of its tail (a band of ink the outline goes out and back \
+         along) come out as one curve, but open: it runs out to the tail's tip and stops partway \
+         back, where the tail's band has a pen lift; two of the fork's four \
          tines are cut across by pen lifts and not read as double strands: the fork's outline \
          stays open at their tops, and a piece runs from one of them down to the right tine's \
          base",
