@@ -130,29 +130,16 @@ pub fn join_loops_to_open_curves(curves: &mut Vec<Polyline>, mask: &Bitmap, stro
         return;
     }
     let reach = CONTACT_IN_PEN_WIDTHS * stroke_width;
-    // The loops' points by position (few: a page of noise has half a million open points, and
-    // tens of thousands of closed ones), and their boxes grown by the reach, sorted by their
-    // left edge: only the open curves whose boxes meet one of them are looked along.
+    // The loops' points by position: few (a page of noise has half a million open points, and
+    // a few ten thousand closed ones), so the open curves are looked along among them.
     let mut loop_points = PointGrid::new(reach.max(1.0));
-    let mut loop_boxes: Vec<Rect> = Vec::new();
     for (c, curve) in curves.iter().enumerate() {
         if curve.closed && curve.points.len() >= 3 {
             for (k, &p) in curve.points.iter().enumerate() {
                 loop_points.insert(p, (c, k));
             }
-            loop_boxes.push(bounds(&curve.points).inflate(reach, reach));
         }
     }
-    loop_boxes.sort_by(|a, b| a.x0.total_cmp(&b.x0));
-    let loop_boxes_meeting = |curve: &Polyline| -> Vec<Rect> {
-        let own = bounds(&curve.points);
-        let right_of = loop_boxes.partition_point(|b| b.x0 <= own.x1);
-        loop_boxes[..right_of]
-            .iter()
-            .filter(|b| b.x1 >= own.x0 && b.y0 <= own.y1 && b.y1 >= own.y0)
-            .copied()
-            .collect()
-    };
     let max_cosine_off = TOUCH_MAX_ANGLE_DEGREES.to_radians().cos();
     // An open curve that ends on a loop (a balloon's string) is tied to it there, and stays a
     // curve of its own.
@@ -163,16 +150,15 @@ pub fn join_loops_to_open_curves(curves: &mut Vec<Polyline>, mask: &Bitmap, stro
         if curve.closed || curve.points.len() < 3 {
             continue;
         }
-        let boxes = loop_boxes_meeting(curve);
-        if boxes.is_empty() {
-            continue;
-        }
         let ends = [curve.points[0], curve.points[curve.points.len() - 1]];
+        let ends_on = |small: usize| {
+            ends.iter().any(|&end| {
+                loop_points
+                    .around(end)
+                    .any(|&(c, k)| c == small && curves[small].points[k].distance(end) <= reach)
+            })
+        };
         for (at_large, &p) in curve.points.iter().enumerate() {
-            // A point in no loop's box touches none: cheaper to tell where the boxes are few.
-            if boxes.len() <= MAX_BOXES_TESTED && !boxes.iter().any(|b| b.contains(p)) {
-                continue;
-            }
             for &(small, at_small) in loop_points.around(p) {
                 let q = curves[small].points[at_small];
                 let distance = p.distance(q);
@@ -186,14 +172,7 @@ pub fn join_loops_to_open_curves(curves: &mut Vec<Polyline>, mask: &Bitmap, stro
                         .dot(direction_at(&curves[small], at_small))
                         .abs()
                         >= max_cosine_off
-                    && !*tied.entry((small, large)).or_insert_with(|| {
-                        ends.iter().any(|&end| {
-                            curves[small]
-                                .points
-                                .iter()
-                                .any(|q| q.distance(end) <= reach)
-                        })
-                    })
+                    && !*tied.entry((small, large)).or_insert_with(|| ends_on(small))
                     && ink_between(mask, p, q)
                 {
                     nearest.insert(
@@ -231,10 +210,6 @@ pub fn join_loops_to_open_curves(curves: &mut Vec<Polyline>, mask: &Bitmap, stro
     }
     remove_marked(curves, &joined);
 }
-
-/// An open curve's points are tested against the loops' boxes it meets, where there are at most
-/// this many, before they are looked up among the loops' points.
-const MAX_BOXES_TESTED: usize = 16;
 
 /// The unit direction of `curve` at its point `k`, from the point before to the point after (at
 /// an open curve's ends, from or to the end itself).
@@ -494,10 +469,13 @@ pub fn drop_covered_open_curves(curves: &mut Vec<Polyline>, stroke_width: f64) {
         return;
     }
     let cover = COVERED_IN_PEN_WIDTHS * stroke_width;
-    let samples = |curve: &Polyline| curve.resample(ARC_STEP_PX).points;
+    let samples: Vec<Vec<Point>> = curves
+        .iter()
+        .map(|curve| curve.resample(ARC_STEP_PX).points)
+        .collect();
     let mut near = PointGrid::new(cover.max(1.0));
-    for (c, curve) in curves.iter().enumerate() {
-        for p in samples(curve) {
+    for (c, points) in samples.iter().enumerate() {
+        for &p in points {
             near.insert(p, (c, p));
         }
     }
@@ -506,7 +484,7 @@ pub fn drop_covered_open_curves(curves: &mut Vec<Polyline>, stroke_width: f64) {
         if curves[o].closed || curves[o].points.len() < 2 {
             continue;
         }
-        let covered = samples(&curves[o]).iter().all(|&p| {
+        let covered = samples[o].iter().all(|&p| {
             near.around(p)
                 .any(|&(c, q)| c != o && !removed[c] && q.distance(p) <= cover)
         });
