@@ -471,8 +471,13 @@ mod tests {
     /// Restores the tips of the open curve through `points` (pen 3) and asserts that one of its
     /// vertices lies within a pixel of `apex`.
     fn assert_apex_restored(points: Vec<Point>, mask: &Bitmap, apex: Point) {
+        assert_apex_restored_with_pen(points, mask, apex, 3.0);
+    }
+
+    /// As [`assert_apex_restored`], for a pen of `pen` pixels.
+    fn assert_apex_restored_with_pen(points: Vec<Point>, mask: &Bitmap, apex: Point, pen: f64) {
         let mut curves = vec![Polyline::new(points, false)];
-        restore_tips(&mut curves, mask, 3.0);
+        restore_tips(&mut curves, mask, pen);
         let nearest = curves[0]
             .points
             .iter()
@@ -622,14 +627,7 @@ mod tests {
                 .rev()
                 .map(|k| along(meet, 1.0, 75.0 - 10.0 * k as f64)),
         );
-        let mut curves = vec![Polyline::new(points, false)];
-        restore_tips(&mut curves, &mask, 7.0);
-        let nearest = curves[0]
-            .points
-            .iter()
-            .map(|p| p.distance(apex))
-            .fold(f64::INFINITY, f64::min);
-        assert!(nearest < 1.0, "{:?}", curves[0].points);
+        assert_apex_restored_with_pen(points, &mask, apex, 7.0);
     }
 
     #[test]
