@@ -8,10 +8,10 @@ use std::time::{Duration, Instant};
 
 use image::{DynamicImage, GrayImage};
 
-use crate::crawl::band_ends::close_band_ends;
 use crate::crawl::contacts::{
     drop_covered_open_curves, drop_redundant_arcs, join_loops_to_open_curves, join_touching_loops,
 };
+use crate::crawl::outline_gaps::close_outline_gaps;
 use crate::crawl::spikes::{fold_collapsed_spikes, join_free_ends_to_spike_tips};
 use crate::crawl::strokes::{connect, Method};
 use crate::crawl::tips::restore_tips;
@@ -180,7 +180,7 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
         drop_redundant_arcs(&mut curves, stroke_width);
         drop_covered_open_curves(&mut curves, stroke_width);
         join_loops_to_open_curves(&mut curves, &raster.mask, stroke_width);
-        close_band_ends(&mut curves, stroke_width);
+        close_outline_gaps(&mut curves, stroke_width);
         restore_tips(&mut curves, &raster.mask, stroke_width);
     }
     watch.lap(&mut report, "reconstruct");

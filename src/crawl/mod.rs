@@ -8,12 +8,12 @@
 //! the crawl on sampled pen strokes, with bridges across the gaps between their free ends.
 
 pub mod algorithm;
-pub mod band_ends;
 mod bands;
 mod bridges;
 mod closure;
 pub mod contacts;
 pub mod neighbours;
+pub mod outline_gaps;
 pub mod reconstruct;
 pub mod robust;
 pub mod spikes;
