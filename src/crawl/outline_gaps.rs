@@ -9,7 +9,7 @@
 
 use kurbo::{Point, Vec2};
 
-use super::strokes::point_at_length;
+use super::bands::point_back_from;
 use crate::geometry::grid::PointGrid;
 use crate::geometry::Polyline;
 
@@ -88,8 +88,8 @@ fn closes_across_its_ends(curve: &Polyline, max_across: f64, reach: f64) -> bool
     {
         return false;
     }
-    let reversed: Vec<Point> = points.iter().rev().copied().collect();
-    let (Some(way_a), Some(way_b)) = (outward(points, reach), outward(&reversed, reach)) else {
+    let (Some(way_a), Some(way_b)) = (outward(points, false, reach), outward(points, true, reach))
+    else {
         return false;
     };
     !ends_part(a, way_a, b, way_b)
@@ -105,11 +105,15 @@ fn ends_part(a: Point, way_a: Vec2, b: Point, way_b: Vec2) -> bool {
     way_a.dot(b - a) < 0.0 && way_b.dot(a - b) < 0.0
 }
 
-/// The unit direction in which the curve `points` leaves its first point, measured from the point
-/// `reach` along it.
-fn outward(points: &[Point], reach: f64) -> Option<Vec2> {
-    let behind = point_at_length(points, reach);
-    let way = points[0] - behind;
+/// The unit direction in which the curve `points` leaves its first (or last) point, measured
+/// from the point `reach` back along it.
+fn outward(points: &[Point], at_last: bool, reach: f64) -> Option<Vec2> {
+    let end = if at_last {
+        points[points.len() - 1]
+    } else {
+        points[0]
+    };
+    let way = end - point_back_from(points, at_last, reach);
     let length = way.hypot();
     (length > 0.0).then(|| way / length)
 }
