@@ -13,7 +13,7 @@ use crate::crawl::contacts::{
 };
 use crate::crawl::outline_gaps::close_outline_gaps;
 use crate::crawl::spikes::{fold_collapsed_spikes, join_free_ends_to_spike_tips};
-use crate::crawl::strokes::{connect, Method};
+use crate::crawl::strokes::{connect_measured, Connected, Method};
 use crate::crawl::tips::restore_tips;
 use crate::files::{open_regular_file, ReadError};
 use crate::output::debug::Stages;
@@ -172,15 +172,20 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
     report.samples = sampled.iter().map(|s| s.line.points.len()).sum();
     watch.lap(&mut report, "strokes+sample");
 
-    let mut curves = connect(&sampled, options.method, spacing, stroke_width);
-    if options.method == Method::Strokes {
+    let Connected {
+        mut curves,
+        typical_gap,
+    } = connect_measured(&sampled, options.method, spacing, stroke_width);
+    // Only the stroke-aware crawl bridges gaps (and measures their typical size); the stages after
+    // it are its own, the point-set crawls' curves are left as they are.
+    if let Some(typical_gap) = typical_gap {
         fold_collapsed_spikes(&mut curves, &raster.mask, stroke_width);
         join_free_ends_to_spike_tips(&mut curves, &raster.mask, stroke_width);
         join_touching_loops(&mut curves, &raster.mask, stroke_width);
         drop_redundant_arcs(&mut curves, stroke_width);
         drop_covered_open_curves(&mut curves, stroke_width);
         join_loops_to_open_curves(&mut curves, &raster.mask, stroke_width);
-        close_outline_gaps(&mut curves, stroke_width);
+        close_outline_gaps(&mut curves, stroke_width, typical_gap);
         restore_tips(&mut curves, &raster.mask, stroke_width);
     }
     watch.lap(&mut report, "reconstruct");

@@ -127,7 +127,7 @@ pub(super) const BRIDGE_MAX_IN_TYPICAL_GAPS: f64 = 2.0;
 
 /// A bridge that clearly closes a loop may be this many typical gaps long; see
 /// [`Matching::closes_clearly`].
-const LOOP_GAP_MAX_IN_TYPICAL_GAPS: f64 = 3.5;
+pub(super) const LOOP_GAP_MAX_IN_TYPICAL_GAPS: f64 = 3.5;
 
 /// ... and at most this share of the loop.
 const LOOP_GAP_MAX_SHARE_WIDE: f64 = 0.15;

@@ -10,18 +10,18 @@
 use kurbo::{Point, Vec2};
 
 use super::bands::point_back_from;
+use super::bridges::LOOP_GAP_MAX_IN_TYPICAL_GAPS;
 use crate::geometry::grid::PointGrid;
 use crate::geometry::Polyline;
 
-/// DECISION: (stop 39) the two ends lie at most this many pen widths apart: a band's two sides
-/// stand up to three pen widths apart centre to centre (a leg, a foot), and the pen lift leaves
-/// one of them longer; five pen widths is the reach a band's base is looked for in across a pen
-/// lift ([`super::bands`]). Measured on the benchmark (with ends side by side within 20° only):
-/// seed 3 376 → 377 (a leg's foot at 4.1 pen widths), the other four splits the same; at four
-/// pen widths nothing changed. Any two ends that do not part (see [`ends_part`]) instead: seed 5
-/// +1 (a thin star's closing gap the matching left), nothing else changed.
-const MAX_ACROSS_IN_PEN_WIDTHS: f64 = 5.0;
-
+// DECISION: (stop 40) the two ends lie at most as far apart as the matching bridges to close a
+// loop ([`LOOP_GAP_MAX_IN_TYPICAL_GAPS`] typical gaps): a gap the drawing's own pen lifts could
+// have left. Stop 39 capped it at five pen widths (a band's base looked for across a pen lift,
+// [`super::bands`]); that cap was binding: a scanned spike's, a star's and a meander's outline
+// open across one pen lift of 6–12 pen widths stayed open. Measured on the benchmark: +1 on each
+// of the five splits (validation too), nothing lost, from 3.5 to 4 typical gaps; at 3 the spike
+// stayed open, at 5 a thin meander closed across its two parting lines' ends (lost), at 7–10
+// spirals' and meanders' open ends closed (2–3 lost a split).
 /// The gap is at most this share of the closed outline: the end of a band is a small part of
 /// the outline it ends (a "U" or a "C" whose opening is its whole width stays open).
 const MAX_SHARE_OF_OUTLINE: f64 = 0.1;
@@ -29,15 +29,16 @@ const MAX_SHARE_OF_OUTLINE: f64 = 0.1;
 /// An end's direction is measured over this much of the curve behind it (pen widths).
 const DIRECTION_REACH_IN_PEN_WIDTHS: f64 = 2.0;
 
-/// Closes every open curve of `curves` whose two ends lie at most a band's width apart
-/// ([`MAX_ACROSS_IN_PEN_WIDTHS`]), the gap a small share of the outline
-/// ([`MAX_SHARE_OF_OUTLINE`]), the ends not parting ([`ends_part`]), and no other curve's end
-/// nearer to either than they lie apart.
-pub fn close_outline_gaps(curves: &mut [Polyline], stroke_width: f64) {
-    if stroke_width <= 0.0 {
+/// Closes every open curve of `curves` whose two ends lie at most a loop-closing bridge apart
+/// ([`LOOP_GAP_MAX_IN_TYPICAL_GAPS`] times the drawing's `typical_gap`, in pixels), the gap a
+/// small share of the outline ([`MAX_SHARE_OF_OUTLINE`]), the ends not parting ([`ends_part`],
+/// directions measured over a reach in `stroke_width`s), and no other curve's end nearer to
+/// either than they lie apart.
+pub fn close_outline_gaps(curves: &mut [Polyline], stroke_width: f64, typical_gap: f64) {
+    if stroke_width <= 0.0 || typical_gap <= 0.0 {
         return;
     }
-    let max_across = MAX_ACROSS_IN_PEN_WIDTHS * stroke_width;
+    let max_across = LOOP_GAP_MAX_IN_TYPICAL_GAPS * typical_gap;
     let reach = DIRECTION_REACH_IN_PEN_WIDTHS * stroke_width;
     let closing: Vec<usize> = curves
         .iter()
@@ -122,6 +123,10 @@ fn outward(points: &[Point], at_last: bool, reach: f64) -> Option<Vec2> {
 mod tests {
     use super::*;
 
+    /// A typical gap for a 3 px pen: one sample spacing (1.5 pen widths); ends up to 15.75 px
+    /// apart may close.
+    const TYPICAL_GAP_PEN_3: f64 = 4.5;
+
     fn open(corners: &[(f64, f64)]) -> Polyline {
         Polyline::new(
             corners.iter().map(|&(x, y)| Point::new(x, y)).collect(),
@@ -132,6 +137,11 @@ mod tests {
     /// An animal's outline with one leg, traced with a 3 px pen, whose foot fell in a pen lift:
     /// the leg's two sides end side by side 10 px apart, pointing down.
     fn leg_open_at_its_foot() -> Polyline {
+        leg_of_width(10.0)
+    }
+
+    /// [`leg_open_at_its_foot`] with the leg `width` px wide.
+    fn leg_of_width(width: f64) -> Polyline {
         open(&[
             (60.0, 200.0),
             (60.0, 100.0),
@@ -139,15 +149,34 @@ mod tests {
             (20.0, 20.0),
             (180.0, 20.0),
             (180.0, 100.0),
-            (70.0, 100.0),
-            (70.0, 200.0),
+            (60.0 + width, 100.0),
+            (60.0 + width, 200.0),
         ])
     }
 
     #[test]
     fn an_outline_open_across_a_legs_foot_is_closed() {
         let mut curves = vec![leg_open_at_its_foot()];
-        close_outline_gaps(&mut curves, 3.0);
+        close_outline_gaps(&mut curves, 3.0, TYPICAL_GAP_PEN_3);
+        assert!(curves[0].closed);
+    }
+
+    #[test]
+    fn ends_farther_apart_than_a_loop_closing_bridge_stay_open() {
+        // 10 px apart: within 3.5 typical gaps of 3 px (10.5 px), beyond 3.5 of 2.8 px (9.8 px).
+        let mut curves = vec![leg_open_at_its_foot()];
+        close_outline_gaps(&mut curves, 3.0, 2.8);
+        assert!(!curves[0].closed);
+        close_outline_gaps(&mut curves, 3.0, 3.0);
+        assert!(curves[0].closed);
+    }
+
+    #[test]
+    fn a_wide_leg_open_across_its_foot_closes_in_a_drawing_of_wide_pen_lifts() {
+        // A 3 px pen whose pen lifts are typically 6 px: the leg's sides end 20 px (6.7 pen
+        // widths) apart, within 3.5 typical gaps (21 px).
+        let mut curves = vec![leg_of_width(20.0)];
+        close_outline_gaps(&mut curves, 3.0, 6.0);
         assert!(curves[0].closed);
     }
 
@@ -161,7 +190,7 @@ mod tests {
             (0.0, 100.0),
             (0.0, 12.0),
         ])];
-        close_outline_gaps(&mut curves, 3.0);
+        close_outline_gaps(&mut curves, 3.0, TYPICAL_GAP_PEN_3);
         assert!(curves[0].closed);
     }
 
@@ -169,7 +198,7 @@ mod tests {
     fn a_u_whose_opening_is_its_whole_width_stays_open() {
         // Ends 12 px apart side by side, pointing up, but the opening is 12 % of the outline.
         let mut curves = vec![open(&[(0.0, 0.0), (0.0, 40.0), (12.0, 40.0), (12.0, 0.0)])];
-        close_outline_gaps(&mut curves, 3.0);
+        close_outline_gaps(&mut curves, 3.0, TYPICAL_GAP_PEN_3);
         assert!(!curves[0].closed);
     }
 
@@ -186,7 +215,7 @@ mod tests {
             (-40.0, 2.0),
             (0.0, spread),
         ])];
-        close_outline_gaps(&mut curves, 6.0);
+        close_outline_gaps(&mut curves, 6.0, 2.0 * TYPICAL_GAP_PEN_3);
         assert!(!curves[0].closed);
     }
 
@@ -196,7 +225,7 @@ mod tests {
             leg_open_at_its_foot(),
             open(&[(65.0, 203.0), (65.0, 260.0)]),
         ];
-        close_outline_gaps(&mut curves, 3.0);
+        close_outline_gaps(&mut curves, 3.0, TYPICAL_GAP_PEN_3);
         assert!(!curves[0].closed);
     }
 }

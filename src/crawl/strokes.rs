@@ -163,12 +163,37 @@ pub fn connect(
     spacing: f64,
     stroke_width: f64,
 ) -> Vec<Polyline> {
+    connect_measured(strokes, method, spacing, stroke_width).curves
+}
+
+/// Curves connected from strokes ([`connect_measured`]), and the drawing's typical pen lift as
+/// the bridges' matching measured it.
+#[derive(Clone, Debug)]
+pub struct Connected {
+    /// The curves, stray marks dropped and free ends extended (see [`connect`]).
+    pub curves: Vec<Polyline>,
+    /// The drawing's typical gap between strokes in pixels (the mean pen lift, clamped to one to
+    /// three sample spacings); `None` for the point-set crawls, which bridge no gaps.
+    pub typical_gap: Option<f64>,
+}
+
+/// [`connect`], also giving the typical gap the bridges were measured against, for the stages
+/// after the crawl that judge gaps on the same scale.
+pub fn connect_measured(
+    strokes: &[Stroke],
+    method: Method,
+    spacing: f64,
+    stroke_width: f64,
+) -> Connected {
     let minimum_length = minimum_curve_length(stroke_width);
     let end_extension = end_extension(stroke_width);
-    let curves = match method {
-        Method::Strokes => connect_strokes(strokes, spacing, stroke_width),
-        Method::Points => crawl_all_samples(strokes, super::robust::reconstruct),
-        Method::Paper => crawl_all_samples(strokes, reconstruct::reconstruct),
+    let (curves, typical_gap) = match method {
+        Method::Strokes => {
+            let (curves, typical_gap) = connect_strokes(strokes, spacing, stroke_width);
+            (curves, Some(typical_gap))
+        }
+        Method::Points => (crawl_all_samples(strokes, super::robust::reconstruct), None),
+        Method::Paper => (crawl_all_samples(strokes, reconstruct::reconstruct), None),
     };
     // A set, not a list: a page of noise has about as many attachment points as curves, and a
     // list searched once per curve end made this step quadratic (16 MP of noise: 70 s).
@@ -180,7 +205,7 @@ pub fn connect(
             StrokeEnd::Free => None,
         })
         .collect();
-    curves
+    let curves = curves
         .into_iter()
         .filter(|curve| curve.length() >= minimum_length)
         .map(|mut curve| {
@@ -190,7 +215,11 @@ pub fn connect(
             }
             curve
         })
-        .collect()
+        .collect();
+    Connected {
+        curves,
+        typical_gap,
+    }
 }
 
 /// A point as a hashable key: its coordinates' bits (pixel coordinates are never -0 or NaN, so
@@ -373,8 +402,13 @@ impl StrokeGraph {
     }
 }
 
-/// The crawl on stroke edges and bridges (see the module documentation).
-pub fn connect_strokes(strokes: &[Stroke], spacing: f64, stroke_width: f64) -> Vec<Polyline> {
+/// The crawl on stroke edges and bridges (see the module documentation), and the drawing's
+/// typical gap the bridges were matched against.
+pub fn connect_strokes(
+    strokes: &[Stroke],
+    spacing: f64,
+    stroke_width: f64,
+) -> (Vec<Polyline>, f64) {
     let vertices = StrokeVertices::new(strokes, spacing);
     let positions = &vertices.positions;
     let StrokeGraph { mut edges, ends } =
@@ -456,7 +490,10 @@ pub fn connect_strokes(strokes: &[Stroke], spacing: f64, stroke_width: f64) -> V
         join_holes_touching_their_outline(curves, is_band, &contacts, stroke_width);
     let (curves, is_band) =
         close_curves_ending_on_themselves(curves, is_band, stroke_width, bridge_reach);
-    splice_lone_bands(curves, &is_band, stroke_width)
+    (
+        splice_lone_bands(curves, &is_band, stroke_width),
+        typical_gap,
+    )
 }
 
 /// DECISION: (stop 28) a wide dash ([`Stroke::wide`]) that took a bridge to a stub no longer than
@@ -763,7 +800,7 @@ mod tests {
         string_and_arc.extend(arc(90.0, 120.0, 4).into_iter().skip(1));
         let mut rest = open(&arc(128.0, 440.0, 80));
         rest.ends[1] = StrokeEnd::Attached(Point::new(knot.0, knot.1));
-        let curves = connect_strokes(&[open(&string_and_arc), rest], 4.0, 3.0);
+        let (curves, _) = connect_strokes(&[open(&string_and_arc), rest], 4.0, 3.0);
         assert_eq!(curves.len(), 2, "{curves:?}");
         let balloon = curves.iter().find(|c| c.closed).expect("a closed balloon");
         assert!(
@@ -813,7 +850,7 @@ mod tests {
             (40.0 + 20.0 * angle.cos(), 60.0 + 20.0 * angle.sin())
         }));
         points.push((24.0, 40.0));
-        let curves = connect_strokes(&[open(&points)], 4.0, 3.0);
+        let (curves, _) = connect_strokes(&[open(&points)], 4.0, 3.0);
         assert_eq!(curves.len(), 1, "{curves:?}");
         assert!(!curves[0].closed, "{curves:?}");
     }
