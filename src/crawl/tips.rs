@@ -482,6 +482,11 @@ mod tests {
         (points, apex, mask)
     }
 
+    /// The smallest y of the curve's points: how far up its tip reaches.
+    fn topmost(curve: &Polyline) -> f64 {
+        curve.points.iter().map(|p| p.y).fold(f64::MAX, f64::min)
+    }
+
     /// Restores the tips of the open curve through `points` (pen 3) and asserts that one of its
     /// vertices lies within a pixel of `apex`.
     fn assert_apex_restored(points: Vec<Point>, mask: &Bitmap, apex: Point) {
@@ -556,11 +561,7 @@ mod tests {
         assert!(!mask.get(cut.x as usize, 3));
         let mut curves = vec![Polyline::new(points.clone(), false)];
         restore_tips(&mut curves, &mask, 3.0);
-        let top = curves[0]
-            .points
-            .iter()
-            .map(|p| p.y)
-            .fold(f64::MAX, f64::min);
+        let top = topmost(&curves[0]);
         assert!((13.0..=15.0).contains(&top), "{:?}", curves[0].points);
     }
 
@@ -659,11 +660,7 @@ mod tests {
         let mask = inked(&[Point::new(50.0, 92.0), Point::new(50.0, 22.0)], 4.0, 100);
         let mut curves = vec![Polyline::new(hairpin_loop(50.0, 50.0, 22.0, 92.0), true)];
         restore_tips(&mut curves, &mask, 4.0);
-        let top = curves[0]
-            .points
-            .iter()
-            .map(|p| p.y)
-            .fold(f64::MAX, f64::min);
+        let top = topmost(&curves[0]);
         assert!((19.5..=20.5).contains(&top), "{:?}", curves[0].points);
     }
 
