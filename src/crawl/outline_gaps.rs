@@ -14,14 +14,6 @@ use super::bridges::LOOP_GAP_MAX_IN_TYPICAL_GAPS;
 use crate::geometry::grid::PointGrid;
 use crate::geometry::Polyline;
 
-// DECISION: (stop 40) the two ends lie at most as far apart as the matching bridges to close a
-// loop ([`LOOP_GAP_MAX_IN_TYPICAL_GAPS`] typical gaps): a gap the drawing's own pen lifts could
-// have left. Stop 39 capped it at five pen widths (a band's base looked for across a pen lift,
-// [`super::bands`]); that cap was binding: a scanned spike's, a star's and a meander's outline
-// open across one pen lift of 6–12 pen widths stayed open. Measured on the benchmark: +1 on each
-// of the five splits (validation too), nothing lost, from 3.5 to 4 typical gaps; at 3 the spike
-// stayed open, at 5 a thin meander closed across its two parting lines' ends (lost), at 7–10
-// spirals' and meanders' open ends closed (2–3 lost a split).
 /// The gap is at most this share of the closed outline: the end of a band is a small part of
 /// the outline it ends (a "U" or a "C" whose opening is its whole width stays open).
 const MAX_SHARE_OF_OUTLINE: f64 = 0.1;
@@ -38,6 +30,14 @@ pub fn close_outline_gaps(curves: &mut [Polyline], stroke_width: f64, typical_ga
     if stroke_width <= 0.0 || typical_gap <= 0.0 {
         return;
     }
+    // DECISION: (stop 40) the two ends lie at most as far apart as the matching bridges to
+    // close a loop ([`LOOP_GAP_MAX_IN_TYPICAL_GAPS`] typical gaps): a gap the drawing's own pen
+    // lifts could have left. Stop 39 capped it at five pen widths (a band's base looked for
+    // across a pen lift, [`super::bands`]); that cap was binding: a scanned spike's, a star's and
+    // a meander's outline open across one pen lift of 6–12 pen widths stayed open. Measured on
+    // the benchmark: +1 on each of the five splits (validation too), nothing lost, from 3.5 to 4
+    // typical gaps; at 3 the spike stayed open, at 5 a thin meander closed across its two parting
+    // lines' ends (lost), at 7–10 spirals' and meanders' open ends closed (2–3 lost a split).
     let max_across = LOOP_GAP_MAX_IN_TYPICAL_GAPS * typical_gap;
     let reach = DIRECTION_REACH_IN_PEN_WIDTHS * stroke_width;
     let closing: Vec<usize> = curves
