@@ -5,7 +5,7 @@
 
 use std::collections::{HashMap, HashSet};
 
-use kurbo::{Line, ParamCurve, ParamCurveNearest, Point};
+use kurbo::{Line, ParamCurve, ParamCurveNearest, Point, Vec2};
 
 use super::strokes::point_at_length;
 use crate::geometry::Polyline;
@@ -117,14 +117,11 @@ fn stands_on(
     } else {
         (points[0], points[points.len() - 1])
     };
-    let back = DIRECTION_REACH_IN_PEN_WIDTHS * stroke_width;
-    let behind = point_back_from(points, at_last, back);
-    let outward = end - behind;
-    let length = outward.hypot();
-    if length == 0.0 {
-        return None;
-    }
-    let outward = outward / length;
+    let outward = end_direction(
+        points,
+        at_last,
+        DIRECTION_REACH_IN_PEN_WIDTHS * stroke_width,
+    )?;
     let foot = grid.nearest(end, curves, reach)?;
     let towards = foot.point - end;
     let max_turn = BASE_MAX_TURN_DEGREES.to_radians().cos();
@@ -133,6 +130,19 @@ fn stands_on(
         .nearest(far_end, curves, foot.distance + stroke_width)
         .is_none();
     (points_at && sticks_out).then_some(foot)
+}
+
+/// The unit direction in which the curve `points` leaves its first (or last) point, measured
+/// from the point `reach` back along it; none where the two coincide.
+pub(super) fn end_direction(points: &[Point], at_last: bool, reach: f64) -> Option<Vec2> {
+    let end = if at_last {
+        points[points.len() - 1]
+    } else {
+        points[0]
+    };
+    let way = end - point_back_from(points, at_last, reach);
+    let length = way.hypot();
+    (length > 0.0).then(|| way / length)
 }
 
 /// The point `distance` back along `points` from its first (or last) point.

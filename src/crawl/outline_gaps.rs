@@ -9,7 +9,7 @@
 
 use kurbo::{Point, Vec2};
 
-use super::bands::point_back_from;
+use super::bands::end_direction;
 use super::bridges::LOOP_GAP_MAX_IN_TYPICAL_GAPS;
 use crate::geometry::grid::PointGrid;
 use crate::geometry::Polyline;
@@ -89,8 +89,10 @@ fn closes_across_its_ends(curve: &Polyline, max_across: f64, reach: f64) -> bool
     {
         return false;
     }
-    let (Some(way_a), Some(way_b)) = (outward(points, false, reach), outward(points, true, reach))
-    else {
+    let (Some(way_a), Some(way_b)) = (
+        end_direction(points, false, reach),
+        end_direction(points, true, reach),
+    ) else {
         return false;
     };
     !ends_part(a, way_a, b, way_b)
@@ -104,19 +106,6 @@ fn closes_across_its_ends(curve: &Polyline, max_across: f64, reach: f64) -> bool
 // at).
 fn ends_part(a: Point, way_a: Vec2, b: Point, way_b: Vec2) -> bool {
     way_a.dot(b - a) < 0.0 && way_b.dot(a - b) < 0.0
-}
-
-/// The unit direction in which the curve `points` leaves its first (or last) point, measured
-/// from the point `reach` back along it.
-fn outward(points: &[Point], at_last: bool, reach: f64) -> Option<Vec2> {
-    let end = if at_last {
-        points[points.len() - 1]
-    } else {
-        points[0]
-    };
-    let way = end - point_back_from(points, at_last, reach);
-    let length = way.hypot();
-    (length > 0.0).then(|| way / length)
 }
 
 #[cfg(test)]
