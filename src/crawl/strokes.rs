@@ -280,8 +280,9 @@ pub(super) struct StrokeVertices {
     pub(super) closed: Vec<bool>,
     /// For a dot, half the length of the dash it stands for: gaps are measured from its rim.
     pub(super) dot_radius: HashMap<u32, f64>,
-    /// For a dot, the two ends of the dash it stands for, to draw it back in the output.
-    dot_dash: HashMap<u32, (Point, Point)>,
+    /// For a dot, the samples of the dash it stands for, to draw it back in the output as drawn:
+    /// a dash that turns a corner (the pen's short stroke at a shape's corner) keeps its corner.
+    dot_dash: HashMap<u32, Vec<Point>>,
 }
 
 impl StrokeVertices {
@@ -322,8 +323,8 @@ impl StrokeVertices {
                 if let Some((_, radius)) = dot {
                     vertices.dot_radius.insert(v, radius);
                     let line = &stroke.line.points;
-                    if let (Some(&first), Some(&last)) = (line.first(), line.last()) {
-                        vertices.dot_dash.insert(v, (first, last));
+                    if !line.is_empty() {
+                        vertices.dot_dash.insert(v, line.clone());
                     }
                 }
             }
@@ -722,10 +723,11 @@ fn chain_to_curve(
         if k > 0 {
             points.extend(via_between(order[k - 1], v));
         }
-        let Some(&(a, b)) = vertices.dot_dash.get(&v) else {
+        let Some(dash) = vertices.dot_dash.get(&v) else {
             points.push(positions[v as usize]);
             continue;
         };
+        let (a, b) = (dash[0], dash[dash.len() - 1]);
         // Draw the dash with the end nearer to the curve before it first (or, at the start, the
         // end farther from the curve after it).
         let (before, after) = neighbours_along(&order, k, chain.closed);
@@ -736,10 +738,14 @@ fn chain_to_curve(
             }
             (None, None) => true,
         };
-        let (first, second) = if a_first { (a, b) } else { (b, a) };
-        points.push(first);
-        if second != first {
-            points.push(second);
+        let start = points.len();
+        points.extend(dash.iter().copied());
+        if !a_first {
+            points[start..].reverse();
+        }
+        // A dash whose two ends coincide stands for its one point.
+        if a == b {
+            points.truncate(start + 1);
         }
     }
     if chain.closed && order.len() > 2 {
@@ -838,6 +844,28 @@ mod tests {
         assert!(pieces[0].closed && !pieces[1].closed, "{pieces:?}");
         let knot = vertices.positions[*pieces[1].vertices.front().unwrap() as usize];
         assert!(knot.distance(Point::new(50.0, 80.0)) < 2.0, "{knot:?}");
+    }
+
+    #[test]
+    fn a_short_dash_at_a_corner_is_drawn_back_with_its_corner() {
+        // An open "L": a vertical line down to 6 px above the corner, a horizontal line from
+        // 6 px right of it, and between them the pen's short stroke round the corner itself, 3 px
+        // up and 3 px across (6 px: a dot at a spacing of 4). The dot stands for its dash: the
+        // curve goes round the corner, not across the chord between the dash's two ends.
+        let down = open(&line((0.0, -60.0), (0.0, -6.0)));
+        let corner = open(&[(0.0, -3.0), (0.0, 0.0), (3.0, 0.0)]);
+        let across = open(&line((6.0, 0.0), (60.0, 0.0)));
+        let (curves, _) = connect_strokes(&[down, corner, across], 4.0, 3.0);
+        assert_eq!(curves.len(), 1, "{curves:?}");
+        let nearest = curves[0]
+            .points
+            .iter()
+            .map(|p| p.distance(Point::ORIGIN))
+            .fold(f64::INFINITY, f64::min);
+        assert!(
+            nearest < 0.5,
+            "the corner is cut, {nearest:.2} px off: {curves:?}"
+        );
     }
 
     #[test]
