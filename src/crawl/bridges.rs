@@ -676,7 +676,7 @@ impl<'a> Matching<'a> {
     /// 367, 359 → 360, 352 → 353 (two meanders whose side by side lines were sealed at a gap);
     /// validation 355 → 354 (an animal), seed 4 unchanged.
     ///
-    /// (stop 41) Any bridge `x–w`, not only a last resort, gives way so where the two new
+    /// (stop 41) Any bridge `x–w`, not only a last resort, gives way so wherever the two new
     /// bridges cost less in all than `x–w` and `y–z`: greedy order takes the cheapest bridge
     /// first, not the cheapest pairing of four ends. A leg whose two sides end side by side
     /// above its foot, the toe's stroke below them ending in two ends too: the toe's two ends
