@@ -1447,16 +1447,16 @@ fn defer_ends_on_gaps(
             if third == candidate.a || third == candidate.b || end.attached {
                 continue;
             }
-            // It comes in across the line (a dash along the line is a piece of it).
+            // It comes in across the line (a dash along the line is a piece of it), as measured
+            // and along its stroke's chord (a piece of the line whose last pixels curl).
             let Some(uc) = end.outward else {
                 continue;
             };
-            if uc.dot(chord).abs() > ON_GAP_MAX_ALONG_COSINE * length {
-                continue;
-            }
-            // Along its stroke's chord too: a piece of the line whose last pixels curl.
             let unbent = unbent(&BridgeEnd::of(end, None)).unwrap_or(uc);
-            if unbent.dot(chord).abs() > ON_GAP_MAX_ALONG_COSINE * length {
+            if [uc, unbent]
+                .iter()
+                .any(|way| way.dot(chord).abs() > ON_GAP_MAX_ALONG_COSINE * length)
+            {
                 continue;
             }
             let along = (end.at - a.at).dot(chord) / (length * length);
@@ -2591,6 +2591,20 @@ mod tests {
         )
     }
 
+    /// A free end of stroke `stroke` at `at`, its vertex numbered as its stroke, going `way`
+    /// (normalised) with the stroke's `bend` carried into it.
+    fn free_end(stroke: usize, at: Point, way: Vec2, bend: f64) -> BridgeableEnd {
+        BridgeableEnd {
+            vertex: stroke as u32,
+            stroke,
+            outward: Some(way.normalize()),
+            bend,
+            curving: 0.0,
+            at,
+            attached: false,
+        }
+    }
+
     /// A leg's two sides ending side by side above its foot, and the foot's stroke below them
     /// (a toe, drawn as a "U" open upwards) ending in two ends too: each side of the leg and the
     /// toe's end under it, as `StrokeVertices` and the four free ends. Vertices: the left side's
@@ -2614,12 +2628,7 @@ mod tests {
         }
         let end = |vertex: u32, stroke: usize, way: Vec2| BridgeableEnd {
             vertex,
-            stroke,
-            outward: Some(way),
-            bend: 0.0,
-            curving: 0.0,
-            at: vertices.positions[vertex as usize],
-            attached: false,
+            ..free_end(stroke, vertices.positions[vertex as usize], way, 0.0)
         };
         let (down, up) = (Vec2::new(0.0, 1.0), Vec2::new(0.0, -1.0));
         let ends = vec![
@@ -2694,14 +2703,8 @@ mod tests {
         // along its stroke's chord (the bend taken off) it points up the line: a piece of the
         // stem, not a crossbar coming in across it, and its bridges keep their cost. Without the
         // bend it comes in across and is deferred behind the stem's straight bridge.
-        let end = |vertex: u32, x: f64, y: f64, way: Vec2, bend: f64| BridgeableEnd {
-            vertex,
-            stroke: vertex as usize,
-            outward: Some(way.normalize()),
-            bend,
-            curving: 0.0,
-            at: Point::new(x, y),
-            attached: false,
+        let end = |vertex: u32, x: f64, y: f64, way: Vec2, bend: f64| {
+            free_end(vertex as usize, Point::new(x, y), way, bend)
         };
         let curled = Vec2::new(-0.89, -0.45);
         let bend = curled.atan2() - Vec2::new(0.0, -1.0).atan2();
@@ -2734,15 +2737,8 @@ mod tests {
         // A thick pen's animal ear (as measured on the benchmark): the head's end at the ear's
         // base points right, the ear's kept side ends at the apex pointing up its way, and the
         // lost side between them is 19.7 px long, 32° from the kept side.
-        let end = |x: f64, y: f64, way: Vec2, stroke: usize| BridgeableEnd {
-            vertex: stroke as u32,
-            stroke,
-            outward: Some(way.normalize()),
-            bend: 0.0,
-            curving: 0.0,
-            at: Point::new(x, y),
-            attached: false,
-        };
+        let end =
+            |x: f64, y: f64, way: Vec2, stroke: usize| free_end(stroke, Point::new(x, y), way, 0.0);
         let base = end(331.5, 72.5, Vec2::new(0.989, 0.150), 0);
         let tip = end(348.5, 62.5, Vec2::new(0.468, -0.884), 1);
         // No ordinary shape fits: a straight bridge turns back by 148° at the apex, and the two
