@@ -244,7 +244,7 @@ pub(super) fn match_gap_bridges(
     };
     let rough = rough_typical_gap(&free_gaps(&matching.run(None)), spacing);
     let settled = settled_under(rough);
-    let typical_gap = typical_gap(&free_gaps(&settled), spacing);
+    let typical_gap = typical_gap(&free_gaps(&settled), spacing, stroke_width);
     // The matching is a function of the typical gap alone: where the rough one was right, the
     // settled matching is the matching.
     let matched = if typical_gap == rough {
@@ -1012,7 +1012,8 @@ fn clamped_typical_gap(gap: f64, spacing: f64) -> f64 {
 }
 
 /// The hand's typical gap, from the gaps of a settled first matching sorted shortest first,
-/// clamped as [`clamped_typical_gap`] (the smallest with no gap at all).
+/// clamped as [`clamped_typical_gap`] (the smallest with no gap at all), and held to the median
+/// hand's where there are too few gaps to measure it ([`MIN_GAPS_TO_MEASURE`]).
 ///
 /// DECISION: the first matching bridges openings too (a "( )", a mouth). The typical gap is the
 /// mean of the gaps up to the first one longer than an ordinary bridge may be
@@ -1023,11 +1024,45 @@ fn clamped_typical_gap(gap: f64, spacing: f64) -> f64 {
 /// drawing has fewer pen lifts than openings (two facing arcs with one lift: gaps of 6.5, 19 and
 /// 21 px, and both openings were bridged). The median of the kept gaps instead of their mean
 /// measured one drawing fewer on dev and opened the cat's outline in `cat-fork-clean.png`.
-fn typical_gap(sorted_gaps: &[f64], spacing: f64) -> f64 {
+fn typical_gap(sorted_gaps: &[f64], spacing: f64, stroke_width: f64) -> f64 {
     let clamped = |gap: f64| clamped_typical_gap(gap, spacing);
     if sorted_gaps.is_empty() {
         return clamped(0.0);
     }
+    if sorted_gaps.len() < MIN_GAPS_TO_MEASURE {
+        return clamped(
+            measured_typical_gap(sorted_gaps, spacing)
+                .min(FEW_GAPS_TYPICAL_MAX_IN_PEN_WIDTHS * stroke_width),
+        );
+    }
+    measured_typical_gap(sorted_gaps, spacing)
+}
+
+/// DECISION: (stop 42) a typical gap measured on fewer gaps than this is held to at most
+/// [`FEW_GAPS_TYPICAL_MAX_IN_PEN_WIDTHS`] (for a pen of `stroke_width` pixels): one or two gaps cannot tell pen lifts from openings. A
+/// thick pen's ink closes a short pen lift, so a thick drawing may have no gap left but its
+/// openings: a "( )" of two arcs drawn whole had its two openings of 7 pen widths as its only
+/// gaps, the typical gap came out at the clamp's top (three spacings, 31.5 px), and the loop
+/// closed across both; thick letters drawn in whole strokes bridged the spaces between letters
+/// (an "F"'s bar to the next "T"'s, 40 px of paper). Three gaps (an animal's three pen lifts of
+/// 9–11 px on a thin pen) are already the hand's.
+const MIN_GAPS_TO_MEASURE: usize = 3;
+
+/// DECISION: (stop 42) the most a typical gap measured on fewer than [`MIN_GAPS_TO_MEASURE`]
+/// gaps may be, in pen widths: the median hand, the median typical gap of the tuning splits'
+/// drawings with at least three gaps (2.4 pen widths, 1.6 sample spacings; 2.33–2.37 on those
+/// with 6 or 10). Measured on the benchmark (bench_score, five splits): seeds 1, 3, 5 391, 384,
+/// 381 → 392, 386, 382 (two "( )"s, two thick letter pages), validation 379 → 380 (thick
+/// letters), seed 4 378; six drawings change in all, each nearer the truth. 2.25–3.75 pen widths
+/// lose nothing on the tuning splits (from 3 the letters stay bridged), 1.9 loses four drawings
+/// there (a thick square's corners in pen lifts of 25 px), 1.5 loses nine; held for three gaps
+/// too, a thin animal whose three pen lifts are real was lost. Measured in sample spacings
+/// (1.6) the benchmark is the same, but the cap then follows the spacing asked for, not the pen.
+const FEW_GAPS_TYPICAL_MAX_IN_PEN_WIDTHS: f64 = 2.4;
+
+/// [`typical_gap`] as the gaps measure it, before the few-gaps cap.
+fn measured_typical_gap(sorted_gaps: &[f64], spacing: f64) -> f64 {
+    let clamped = |gap: f64| clamped_typical_gap(gap, spacing);
     // Each gap counts as at least the smallest typical gap: strokes broken where they touch
     // leave gaps of nothing, which are no measure of the hand.
     let mean = |gaps: &[f64]| gaps.iter().map(|&gap| clamped(gap)).sum::<f64>() / gaps.len() as f64;
@@ -2870,6 +2905,19 @@ mod tests {
                 "{curving_degrees}°: {corner:?}"
             );
         }
+    }
+
+    #[test]
+    fn one_or_two_gaps_give_at_most_the_median_hands_typical_gap() {
+        // Two openings of 48 and 50 px on a 7 px pen (spacing 10.5): too few to be the hand's
+        // pen lifts, held to 2.4 pen widths. Three lifts of 9–11 px on a thin pen are measured.
+        let two = typical_gap(&[48.4, 49.7], 10.5, 7.0);
+        assert!((two - 2.4 * 7.0).abs() < 1e-9, "{two}");
+        let small_two = typical_gap(&[6.0, 7.0], 10.5, 7.0);
+        assert!((small_two - 10.5).abs() < 1e-9, "{small_two}");
+        let three = typical_gap(&[9.1, 10.4, 11.0], 3.9, 2.6);
+        assert!(three > 2.4 * 2.6, "{three}");
+        assert_eq!(three, measured_typical_gap(&[9.1, 10.4, 11.0], 3.9));
     }
 
     #[test]

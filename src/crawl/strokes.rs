@@ -1181,6 +1181,20 @@ mod tests {
     }
 
     #[test]
+    fn facing_arcs_drawn_whole_with_a_thick_pen_stay_two_open_curves() {
+        // "( )" on a circle of radius 60, each arc one stroke of a 7 px pen (no pen lift left in
+        // the ink), the openings 54° wide: 48 px of paper, their ends pointing along the circle.
+        // Its only gaps are the two openings; they do not make the hand's typical gap.
+        let strokes = vec![
+            arc((100.0, 100.0), 60.0, -63.0, 63.0, 4.0),
+            arc((100.0, 100.0), 60.0, 117.0, 243.0, 4.0),
+        ];
+        let curves = connect(&strokes, Method::Strokes, 10.5, 7.0);
+        assert_eq!(curves.len(), 2, "{curves:?}");
+        assert!(curves.iter().all(|c| !c.closed), "{curves:?}");
+    }
+
+    #[test]
     fn facing_arcs_drawn_in_skip_strokes_stay_two_open_curves() {
         // "( )" on a circle of radius 60, each arc drawn in six strokes with 5 px pen lifts
         // (ink to ink, a pen of 3 px); the openings at the top and the bottom are 9.8 and 12 px
@@ -1834,13 +1848,16 @@ mod tests {
 
     #[test]
     fn lines_side_by_side_with_staggered_gaps_do_not_swap_places() {
-        // Two lines 3 px apart drawn with a thin pen, each broken once, the gaps 7 px apart
-        // along them. The diagonal from the upper line's left piece to the lower line's right
-        // piece is the cheapest bridge; taken first, it leaves the other two ends to a second
-        // diagonal across it, and the lines swap places. The other pairing costs less in all.
+        // Two lines 3 px apart drawn with a thin pen, the gaps 7 px apart along them. The
+        // diagonal from the upper line's left piece to the lower line's right piece is the
+        // cheapest bridge; taken first, it leaves the other two ends to a second diagonal across
+        // it, and the lines swap places. The other pairing costs less in all. The upper line has
+        // a second pen lift further on: with only two gaps of 6 pen widths the hand's typical
+        // gap is not measured (`bridges::MIN_GAPS_TO_MEASURE`) and neither is bridged.
         let strokes = vec![
             open(&line((0.0, 0.0), (67.0, 0.0))),
-            open(&line((79.0, 0.0), (150.0, 0.0))),
+            open(&line((79.0, 0.0), (110.0, 0.0))),
+            open(&line((121.0, 0.0), (150.0, 0.0))),
             open(&line((0.0, 3.0), (60.0, 3.0))),
             open(&line((73.0, 3.0), (150.0, 3.0))),
         ];
