@@ -315,23 +315,21 @@ pub(super) fn match_gap_bridges(
             continue;
         }
         let mut via: Vec<Point> = junction_of.get(&m.a).copied().into_iter().collect();
-        if m.corner.is_none() {
-            if let (Some(a), Some(b)) = (free_end_at.get(&m.a), free_end_at.get(&m.b)) {
-                via.extend(arc_across(
-                    &BridgeEnd::of(a, None),
-                    &BridgeEnd::of(b, None),
-                    spacing,
-                ));
-            }
-        }
+        // Between two free ends the bridge follows the strokes' arcs where they curve on into
+        // the gap: across it, or along each leg to the corner.
         match (m.corner, free_end_at.get(&m.a), free_end_at.get(&m.b)) {
+            (None, Some(a), Some(b)) => via.extend(arc_across(
+                &BridgeEnd::of(a, None),
+                &BridgeEnd::of(b, None),
+                spacing,
+            )),
             (Some(corner), Some(a), Some(b)) => {
                 via.extend(arc_to_corner(&BridgeEnd::of(a, None), corner, spacing));
                 via.push(corner);
                 let from_b = arc_to_corner(&BridgeEnd::of(b, None), corner, spacing);
                 via.extend(from_b.into_iter().rev());
             }
-            _ => via.extend(m.corner),
+            (corner, _, _) => via.extend(corner),
         }
         via.extend(junction_of.get(&m.b).copied());
         via.dedup();
@@ -1029,23 +1027,22 @@ fn typical_gap(sorted_gaps: &[f64], spacing: f64, stroke_width: f64) -> f64 {
     if sorted_gaps.is_empty() {
         return clamped(0.0);
     }
+    let measured = measured_typical_gap(sorted_gaps, spacing);
     if sorted_gaps.len() < MIN_GAPS_TO_MEASURE {
-        return clamped(
-            measured_typical_gap(sorted_gaps, spacing)
-                .min(FEW_GAPS_TYPICAL_MAX_IN_PEN_WIDTHS * stroke_width),
-        );
+        clamped(measured.min(FEW_GAPS_TYPICAL_MAX_IN_PEN_WIDTHS * stroke_width))
+    } else {
+        measured
     }
-    measured_typical_gap(sorted_gaps, spacing)
 }
 
 /// DECISION: (stop 42) a typical gap measured on fewer gaps than this is held to at most
-/// [`FEW_GAPS_TYPICAL_MAX_IN_PEN_WIDTHS`] (for a pen of `stroke_width` pixels): one or two gaps cannot tell pen lifts from openings. A
-/// thick pen's ink closes a short pen lift, so a thick drawing may have no gap left but its
-/// openings: a "( )" of two arcs drawn whole had its two openings of 7 pen widths as its only
-/// gaps, the typical gap came out at the clamp's top (three spacings, 31.5 px), and the loop
-/// closed across both; thick letters drawn in whole strokes bridged the spaces between letters
-/// (an "F"'s bar to the next "T"'s, 40 px of paper). Three gaps (an animal's three pen lifts of
-/// 9–11 px on a thin pen) are already the hand's.
+/// [`FEW_GAPS_TYPICAL_MAX_IN_PEN_WIDTHS`] (times the pen's width): one or two gaps cannot tell
+/// pen lifts from openings. A thick pen's ink closes a short pen lift, so a thick drawing may
+/// have no gap left but its openings: a "( )" of two arcs drawn whole had its two openings of 7
+/// pen widths as its only gaps, the typical gap came out at the clamp's top (three spacings,
+/// 31.5 px), and the loop closed across both; thick letters drawn in whole strokes bridged the
+/// spaces between letters (an "F"'s bar to the next "T"'s, 40 px of paper). Three gaps (an
+/// animal's three pen lifts of 9–11 px on a thin pen) are already the hand's.
 const MIN_GAPS_TO_MEASURE: usize = 3;
 
 /// DECISION: (stop 42) the most a typical gap measured on fewer than [`MIN_GAPS_TO_MEASURE`]
