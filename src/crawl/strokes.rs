@@ -113,16 +113,18 @@ fn end_direction(points: &[Point], reach: f64, skip: f64) -> Option<(Vec2, f64)>
 /// DECISION: (stop 43) an end's way is not measured across its stroke's own corner. The chord
 /// [`end_direction`] measures over `reach` from `skip` in runs round a corner that lies within
 /// that much of the end, and points halfway between the stroke's last piece and the stretch
-/// before the corner: a short floor stub beside a door, a wave's flank cut off by pen lifts at
-/// its crest and its trough, the two short pieces between an animal's toes. The corner is the
+/// before the corner: a wave's flank cut off by pen lifts at its crest and its trough, the two
+/// short pieces between an animal's toes, a star's arm ending just past its inner corner. (A
+/// house's floor stub beside its door is not caught: its samples cut the corner.) The corner is the
 /// first vertex past `skip` (the pen's round cap, which hooks) where the piece from the end and
 /// the stroke's chord over `reach` beyond the vertex turn by more than
 /// [`MAX_EXTRAPOLATED_TURN`], the turn [`end_direction`] no longer extrapolates through.
 /// Measured on the benchmark (exact of 432): seeds 1, 3, 5 392 → 392, 386 → 390, 382 → 384
 /// (tight waves of dots, an animal's toes and head, a star's inner corner; an arch's cusp, a
 /// tight wave and a meander lost); validation 380 → 381 (+2 −1), seed 4 378 → 378 (+1 −1).
-/// Measured from the end itself with the next single step as the stroke beyond the corner,
-/// seeds 1 and 4 lost a letter and a wave more; from `skip` in, fewer were gained.
+/// With the next single step taken as the stroke beyond the corner: seeds 1, 3, 5 +0, +4, +1
+/// (a scanned "N"'s apex lost to its cap's hook); the piece measured from `skip` in, or required
+/// to be one or one and a half pen widths long: fewer gained.
 fn corner_near_end(points: &[Point], reach: f64, skip: f64) -> Option<Point> {
     let mut along = 0.0;
     for j in 1..points.len().saturating_sub(1) {
