@@ -323,7 +323,7 @@ pub(super) struct StrokeVertices {
     pub(super) dot_radius: HashMap<u32, f64>,
     /// For a dot, the samples of the dash it stands for, to draw it back in the output as drawn:
     /// a dash that turns a corner (the pen's short stroke at a shape's corner) keeps its corner.
-    dot_dash: HashMap<u32, Vec<Point>>,
+    pub(super) dot_dash: HashMap<u32, Vec<Point>>,
 }
 
 impl StrokeVertices {
@@ -826,6 +826,7 @@ fn neighbours_along(vertices: &[u32], k: usize, closed: bool) -> (Option<u32>, O
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::polyline::distance_to_segment;
 
     fn points(corners: &[(f64, f64)]) -> Vec<Point> {
         corners.iter().map(|&(x, y)| Point::new(x, y)).collect()
@@ -960,6 +961,71 @@ mod tests {
         assert!(
             nearest < 0.5,
             "the corner is cut, {nearest:.2} px off: {curves:?}"
+        );
+    }
+
+    #[test]
+    fn a_dash_just_past_a_tip_turns_the_tip_with_its_line() {
+        // A thick pen's triangle (7 px, samples 10.5 px apart) with its pen lift right at its
+        // 72° tip: the left side stops 9.5 px short of the tip, and the right side starts with
+        // a dash 13 px long (a dot at that spacing) from 9 px below the tip. The dash has no
+        // way of its own as a dot; its line out of its upper end meets the left side's line at
+        // the tip, and the outline turns there instead of leaving the gap open.
+        let tip = Point::new(100.0, 20.0);
+        let along = |from: Point, to: Point, start: f64, end: f64| -> Vec<(f64, f64)> {
+            let length = from.distance(to);
+            let count = ((end - start) / 10.0).ceil().max(1.0) as usize;
+            (0..=count)
+                .map(|k| {
+                    let t = (start + (end - start) * k as f64 / count as f64) / length;
+                    let p = from.lerp(to, t);
+                    (p.x, p.y)
+                })
+                .collect()
+        };
+        let (left_foot, right_foot) = (Point::new(10.0, 49.0), Point::new(104.0, 110.0));
+        let left_length = left_foot.distance(tip);
+        let right_length = tip.distance(right_foot);
+        let base_length = right_foot.distance(left_foot);
+        // Up the left side from the middle of the base, round the left foot.
+        let mut up = along(right_foot, left_foot, base_length / 2.0 + 4.0, base_length);
+        up.extend(
+            along(left_foot, tip, 0.0, left_length - 9.5)
+                .into_iter()
+                .skip(1),
+        );
+        let dash = along(tip, right_foot, 9.0, 22.0);
+        // Down the right side after a gap of 8 px, round the right foot, to the base's middle.
+        let mut down = along(tip, right_foot, 30.0, right_length);
+        down.extend(
+            along(right_foot, left_foot, 0.0, base_length / 2.0 - 4.0)
+                .into_iter()
+                .skip(1),
+        );
+        let curves = connect(
+            &[open(&up), open(&dash), open(&down)],
+            Method::Strokes,
+            10.5,
+            7.0,
+        );
+        assert_eq!(curves.len(), 1, "{curves:?}");
+        assert!(curves[0].closed, "{curves:?}");
+        let outline = &curves[0];
+        let nearest = (0..outline.points.len())
+            .map(|k| {
+                let (a, b) = (
+                    outline.points[k],
+                    outline.points[(k + 1) % outline.points.len()],
+                );
+                distance_to_segment(tip, kurbo::Line::new(a, b))
+            })
+            .fold(f64::INFINITY, f64::min);
+        // Within the benchmark's tolerance, half the pen and 2 px. (As a dot alone, the dash
+        // took no bridge from the left side, which turns by 90° to reach its middle, and the
+        // triangle stayed open at its tip.)
+        assert!(
+            nearest < 5.5,
+            "the tip is cut, {nearest:.2} px off: {curves:?}"
         );
     }
 
