@@ -1215,21 +1215,31 @@ fn bridge_candidates(
             && band_partner_of(&a) == Some(b.stroke)
             && band_partner_of(&b) == Some(a.stroke);
         // DECISION: (stop 44) a dot that stands for a dash (a short stroke, [`StrokeVertices`])
-        // has no way of its own, so no corner could be turned into it: a thick pen's star whose
-        // pen lift fell right at a tip, the side after the tip beginning with a dash, had its
-        // tip cut (or its gap left open) where the side before it turned by 60–90° to reach the
-        // dash's middle. A dash at least [`DASH_AXIS_MIN_IN_PEN_WIDTHS`] long also offers the
-        // corner its line makes out of its nearer end, as a stroke's end would
-        // ([`dash_shape`]), beside the dot's own bridges: the matching takes whichever is
-        // cheaper and within the gap limit. Measured on the benchmark (exact of 432): seeds 1,
-        // 3, 5 392, 390 → 391, 384; validation 381, seed 4 378, unchanged; 2 of 2160 outputs
-        // change, both nearer the truth; the same from 0 to 1.5 pen widths, at 2 the star's dash
-        // is too short. Shaping a dash's bridges only this way (its straight bridges turning at
-        // the dash too): seed 3 +1 −1 (a thick circle's closing gap, the corner ahead of its
-        // curved dash too long for the gap limit, left open), validation −1, seed 4 +2.
-        let dash_corner =
-            dash_shape(vertices, &a, &b, stroke_width).filter(|shape| shape.corner.is_some());
-        for mut shape in [shape, turn_back, step, dash_corner].into_iter().flatten() {
+        // has no way of its own: every bridge into it was straight and turned by nothing at it.
+        // A thick pen's star whose pen lift fell right at a tip, the side after the tip beginning
+        // with a dash, could not turn the tip (the side before it would turn by 90° to reach the
+        // dash's middle; it took no bridge and the tip came out cut); two thick parallel lines
+        // whose middle dashes lay side by side had the two dashes bridged straight across to
+        // each other, closing the lines' first pieces into a loop. Where either end is a dot that
+        // stands for a dash at least [`DASH_AXIS_MIN_IN_PEN_WIDTHS`] long, the bridge is shaped
+        // as between stroke ends instead, from either end of the dash, each pointing out along
+        // the dash ([`dash_shape`]); its straight and its corner shape are both offered, so that
+        // the matching can take the straight one where the corner is too long for the gap
+        // limit. Measured on the benchmark (exact of 432): seeds 1, 3, 5 392, 390 → 392, 392,
+        // 384; validation 381 → 381 (3 outputs change: worst distance down on one, up by 0.4
+        // px on two), seed 4 378 → 381. Offering only the corner from the dash's nearer end
+        // beside the dot's own bridges: seed 3 +1 only. From the nearer end alone: seed 1 lost a
+        // "W" whose inner apex's dash ends nearer the far side's end at its lower end. Only the
+        // cheaper of the two shapes: seed 3 lost a thick circle (the corner ahead of its curved
+        // dash too long for the gap limit, the circle left open).
+        let (shape, dash_straight, dash_corner) = match dash_shape(vertices, &a, &b, stroke_width) {
+            Some((straight, corner)) => (None, straight, corner),
+            None => (shape, None, None),
+        };
+        for mut shape in [shape, turn_back, step, dash_straight, dash_corner]
+            .into_iter()
+            .flatten()
+        {
             if band_tip && shape.cost < CUSP_COST_OFFSET {
                 shape.cost += CUSP_COST_OFFSET;
             }
@@ -1804,70 +1814,78 @@ fn uneroded(end: &BridgeEnd, stroke_width: f64) -> Point {
     }
 }
 
-/// The way out of the dash a dot stands for at its end nearer to `toward`: that end, pointing
-/// along the dash's last piece, its ink behind it along that piece; `None` for a dot that is no
-/// dash or a dash shorter than `min_length`.
-fn dash_end(
-    vertices: &StrokeVertices,
-    dot: u32,
-    toward: Point,
-    min_length: f64,
-) -> Option<BridgeEnd> {
-    let dash = vertices.dot_dash.get(&dot)?;
-    let (first, last) = (*dash.first()?, *dash.last()?);
-    if dash.len() < 2 || first.distance(last) < min_length {
-        return None;
+/// The two ends of the dash the dot `dot` stands for, each pointing out along the dash's piece
+/// into it, its ink behind it along that piece; none for a dot that is no dash or a dash whose
+/// ends lie less than `min_length` apart.
+fn dash_ends(vertices: &StrokeVertices, dot: u32, min_length: f64) -> Vec<BridgeEnd> {
+    let Some(dash) = vertices.dot_dash.get(&dot) else {
+        return Vec::new();
+    };
+    let n = dash.len();
+    if n < 2 || dash[0].distance(dash[n - 1]) < min_length {
+        return Vec::new();
     }
-    let mut towards_near = dash.clone();
-    if first.distance(toward) <= last.distance(toward) {
-        towards_near.reverse();
-    }
-    let n = towards_near.len();
-    let (near, next) = (towards_near[n - 1], towards_near[n - 2]);
-    let piece = near - next;
-    (piece.hypot() > 0.0).then(|| BridgeEnd {
-        at: near,
-        outward: Some(piece / piece.hypot()),
-        bend: 0.0,
-        curving: 0.0,
-        behind: Some(next),
-    })
+    [(dash[0], dash[1]), (dash[n - 1], dash[n - 2])]
+        .into_iter()
+        .filter(|(end, next)| end.distance(*next) > 0.0)
+        .map(|(end, next)| BridgeEnd {
+            at: end,
+            outward: Some((end - next) / end.distance(next)),
+            bend: 0.0,
+            curving: 0.0,
+            behind: Some(next),
+        })
+        .collect()
 }
 
-/// The bridge between ends `a` and `b` where either is a dot that stands for a dash at least
-/// [`DASH_AXIS_MIN_IN_PEN_WIDTHS`] long, shaped as between two stroke ends: the dash's end nearer
-/// to the other end, pointing out along the dash ([`dash_end`]); `None` where neither is such a
-/// dash.
+/// The straight and the corner bridge between ends `a` and `b` where either is a dot that stands
+/// for a dash at least [`DASH_AXIS_MIN_IN_PEN_WIDTHS`] long, shaped as between two stroke ends
+/// from either end of the dash ([`dash_ends`]), the cheaper of each kind; `None` where neither is
+/// such a dash.
 fn dash_shape(
     vertices: &StrokeVertices,
     a: &BridgeableEnd,
     b: &BridgeableEnd,
     stroke_width: f64,
-) -> Option<BridgeShape> {
+) -> Option<(Option<BridgeShape>, Option<BridgeShape>)> {
     let min_length = DASH_AXIS_MIN_IN_PEN_WIDTHS * stroke_width;
     let (dash_a, dash_b) = (
-        dash_end(vertices, a.vertex, b.at, min_length),
-        dash_end(vertices, b.vertex, a.at, min_length),
+        dash_ends(vertices, a.vertex, min_length),
+        dash_ends(vertices, b.vertex, min_length),
     );
-    if dash_a.is_none() && dash_b.is_none() {
+    if dash_a.is_empty() && dash_b.is_empty() {
         return None;
     }
     // A dot that is no dash keeps its rim; a dash is bridged from its end.
-    let rim = |end: &BridgeableEnd, dash: &Option<BridgeEnd>| match dash {
-        Some(_) => 0.0,
-        None => *vertices.dot_radius.get(&end.vertex).unwrap_or(&0.0),
+    let rim = |end: &BridgeableEnd, dash: &[BridgeEnd]| {
+        if dash.is_empty() {
+            *vertices.dot_radius.get(&end.vertex).unwrap_or(&0.0)
+        } else {
+            0.0
+        }
     };
     let rims = rim(a, &dash_a) + rim(b, &dash_b);
-    let end_of = |end: &BridgeableEnd, dash: Option<BridgeEnd>| {
-        dash.unwrap_or_else(|| BridgeEnd::of(end, ink_behind(vertices, end, stroke_width)))
+    let ends_of = |end: &BridgeableEnd, dash: Vec<BridgeEnd>| {
+        if dash.is_empty() {
+            vec![BridgeEnd::of(end, ink_behind(vertices, end, stroke_width))]
+        } else {
+            dash
+        }
     };
-    bridge_shape(
-        || false,
-        end_of(a, dash_a),
-        end_of(b, dash_b),
-        rims,
-        stroke_width,
-    )
+    let cheaper = |x: Option<BridgeShape>, y: Option<BridgeShape>| match (x, y) {
+        (Some(x), Some(y)) => Some(if y.cost < x.cost { y } else { x }),
+        (x, y) => x.or(y),
+    };
+    let (ends_a, ends_b) = (ends_of(a, dash_a), ends_of(b, dash_b));
+    let (mut straight, mut corner) = (None, None);
+    for &end_a in &ends_a {
+        for &end_b in &ends_b {
+            let (s, c) = bridge_shapes(|| false, end_a, end_b, rims, stroke_width);
+            straight = cheaper(straight, s);
+            corner = cheaper(corner, c);
+        }
+    }
+    Some((straight, corner))
 }
 
 /// A dash is given a way out of its ends only when its ends lie at least this far apart (pen
@@ -1917,6 +1935,21 @@ fn bridge_shape(
     rims: f64,
     stroke_width: f64,
 ) -> Option<BridgeShape> {
+    match bridge_shapes(acute_may_miss, a, b, rims, stroke_width) {
+        (Some(s), Some(c)) => Some(if c.cost < s.cost { c } else { s }),
+        (s, c) => s.or(c),
+    }
+}
+
+/// The straight bridge and the corner bridge between `a` and `b`, where each may be drawn
+/// ([`bridge_shape`] takes the cheaper).
+fn bridge_shapes(
+    acute_may_miss: impl Fn() -> bool,
+    a: BridgeEnd,
+    b: BridgeEnd,
+    rims: f64,
+    stroke_width: f64,
+) -> (Option<BridgeShape>, Option<BridgeShape>) {
     let chord = b.at - a.at;
     let distance = chord.hypot();
     let unit = if distance > 0.0 {
@@ -2041,10 +2074,7 @@ fn bridge_shape(
     } else {
         None
     };
-    match (straight, corner) {
-        (Some(s), Some(c)) => Some(if c.cost < s.cost { c } else { s }),
-        (s, c) => s.or(c),
-    }
+    (straight, corner)
 }
 
 /// Whether the strokes of ends `a` and `b` go on round a bend into the gap between them, the

@@ -1030,6 +1030,37 @@ mod tests {
     }
 
     #[test]
+    fn dashes_side_by_side_in_two_parallel_lines_are_not_bridged_across() {
+        // Two thick lines (7 px, samples 10.5 px apart) 12 px apart, each drawn as a piece, a
+        // dash 16 px long (a dot at that spacing) and a long piece, the gaps 12 px. The two
+        // dashes lie side by side, 12 px apart: as dots they turned by nothing, and the bridge
+        // straight across between them was the cheapest. Each dash points along its line.
+        let line = |y: f64| -> Vec<Stroke> {
+            let piece = |from: f64, to: f64| {
+                let count = ((to - from) / 10.0).ceil() as usize;
+                let points: Vec<(f64, f64)> = (0..=count)
+                    .map(|k| (from + (to - from) * k as f64 / count as f64, y))
+                    .collect();
+                open(&points)
+            };
+            vec![piece(20.0, 60.0), piece(72.0, 88.0), piece(100.0, 200.0)]
+        };
+        let mut strokes = line(50.0);
+        strokes.extend(line(62.0));
+        let curves = connect(&strokes, Method::Strokes, 10.5, 7.0);
+        assert_eq!(curves.len(), 2, "{curves:?}");
+        for curve in &curves {
+            let (first, last) = (curve.points[0], curve.points[curve.points.len() - 1]);
+            assert!(!curve.closed, "{curves:?}");
+            assert!(first.distance(last) > 170.0, "a line is broken: {curves:?}");
+            assert!(
+                curve.points.iter().all(|p| (p.y - first.y).abs() < 1.0),
+                "a line jumps across: {curves:?}"
+            );
+        }
+    }
+
+    #[test]
     fn a_stroke_ending_square_on_itself_stays_one_open_curve() {
         // A "6" in one stroke: down the left side, round the bowl, and back in square onto the
         // left side. Its end comes in across the stem: no loop is cut off.
