@@ -1890,10 +1890,6 @@ fn dash_shape(
             dash
         }
     };
-    let cheaper = |x: Option<BridgeShape>, y: Option<BridgeShape>| match (x, y) {
-        (Some(x), Some(y)) => Some(if y.cost < x.cost { y } else { x }),
-        (x, y) => x.or(y),
-    };
     let (ends_a, ends_b) = (ends_of(a, dash_a), ends_of(b, dash_b));
     let (mut straight, mut corner) = (None, None);
     for &end_a in &ends_a {
@@ -1956,9 +1952,15 @@ fn bridge_shape(
     rims: f64,
     stroke_width: f64,
 ) -> Option<BridgeShape> {
-    match bridge_shapes(acute_may_miss, a, b, rims, stroke_width) {
-        (Some(s), Some(c)) => Some(if c.cost < s.cost { c } else { s }),
-        (s, c) => s.or(c),
+    let (straight, corner) = bridge_shapes(acute_may_miss, a, b, rims, stroke_width);
+    cheaper(straight, corner)
+}
+
+/// The cheaper of two shapes that may be missing; `first` where they cost the same.
+fn cheaper(first: Option<BridgeShape>, second: Option<BridgeShape>) -> Option<BridgeShape> {
+    match (first, second) {
+        (Some(x), Some(y)) => Some(if y.cost < x.cost { y } else { x }),
+        (x, y) => x.or(y),
     }
 }
 
@@ -2844,16 +2846,8 @@ mod tests {
         }
     }
 
-    /// A leg's two sides ending side by side above its foot, and the foot's stroke below them
-    /// (a toe, drawn as a "U" open upwards) ending in two ends too: each side of the leg and the
-    /// toe's end under it, as `StrokeVertices` and the four free ends. Vertices: the left side's
-    /// end is 1, the right side's 3, the toe's left end 4 and its right end 7.
-    fn leg_over_its_toe() -> (StrokeVertices, Vec<BridgeableEnd>) {
-        let strokes: [&[(f64, f64)]; 3] = [
-            &[(0.0, -40.0), (0.0, 0.0)],
-            &[(2.0, -40.0), (2.0, 0.0)],
-            &[(-1.0, 8.0), (-1.0, 20.0), (6.0, 20.0), (6.0, 8.0)],
-        ];
+    /// The vertices of open strokes through `strokes`' points, numbered in order.
+    fn open_strokes(strokes: &[&[(f64, f64)]]) -> StrokeVertices {
         let mut vertices = StrokeVertices::default();
         for points in strokes {
             let first = vertices.positions.len() as u32;
@@ -2865,6 +2859,20 @@ mod tests {
                 .push((first..vertices.positions.len() as u32).collect());
             vertices.closed.push(false);
         }
+        vertices
+    }
+
+    /// A leg's two sides ending side by side above its foot, and the foot's stroke below them
+    /// (a toe, drawn as a "U" open upwards) ending in two ends too: each side of the leg and the
+    /// toe's end under it, as `StrokeVertices` and the four free ends. Vertices: the left side's
+    /// end is 1, the right side's 3, the toe's left end 4 and its right end 7.
+    fn leg_over_its_toe() -> (StrokeVertices, Vec<BridgeableEnd>) {
+        let strokes: [&[(f64, f64)]; 3] = [
+            &[(0.0, -40.0), (0.0, 0.0)],
+            &[(2.0, -40.0), (2.0, 0.0)],
+            &[(-1.0, 8.0), (-1.0, 20.0), (6.0, 20.0), (6.0, 8.0)],
+        ];
+        let vertices = open_strokes(&strokes);
         let end = |vertex: u32, stroke: usize, way: Vec2| BridgeableEnd {
             vertex,
             ..free_end(stroke, vertices.positions[vertex as usize], way, 0.0)
@@ -2911,23 +2919,13 @@ mod tests {
         // bends, carried on, point them across: as measured, the two bridges from line to line
         // (crossing) cost 23 and the two along the lines 25; by the smaller of each end's turns
         // (from its stroke's chord), the bridges along the lines cost 20. They swap.
-        let mut vertices = StrokeVertices::default();
         let strokes: [&[(f64, f64)]; 4] = [
             &[(-20.0, 0.0), (10.0, 0.0)],
             &[(20.0, 0.0), (50.0, 0.0)],
             &[(-20.0, 5.0), (12.0, 5.0)],
             &[(22.0, 5.0), (50.0, 5.0)],
         ];
-        for points in strokes {
-            let first = vertices.positions.len() as u32;
-            vertices
-                .positions
-                .extend(points.iter().map(|&(x, y)| Point::new(x, y)));
-            vertices
-                .of_stroke
-                .push((first..vertices.positions.len() as u32).collect());
-            vertices.closed.push(false);
-        }
+        let vertices = open_strokes(&strokes);
         let (right, left) = (Vec2::new(1.0, 0.0), Vec2::new(-1.0, 0.0));
         let end = |vertex: u32, stroke: usize, way: Vec2| BridgeableEnd {
             vertex,
