@@ -211,7 +211,7 @@ pub(super) fn match_gap_bridges(
                 .values()
                 .fold(0.0, |a: f64, &b| a.max(b));
     let (candidates, on_gaps) = bridge_candidates(vertices, ends, reach, spacing, stroke_width);
-    let matching = Matching::new(vertices, ends, &candidates, stroke_width);
+    let matching = Matching::new(vertices, ends, &candidates, &on_gaps, stroke_width);
     // First a rough typical gap from an unlimited matching, then the hand's typical gap from the
     // matching that rough limit settles (a greedy first matching can take a short diagonal
     // between two lines side by side, which the settled matching gives up), then the matching
@@ -455,6 +455,8 @@ struct Matching<'a> {
     slots: HashMap<u32, u8>,
     stroke_of: HashMap<u32, usize>,
     stroke_width: f64,
+    /// The ends that sit on the gap between two others, as (end, a, b) ([`EndOnGap`]).
+    on_gaps: Vec<(u32, u32, u32)>,
 }
 
 impl<'a> Matching<'a> {
@@ -462,6 +464,7 @@ impl<'a> Matching<'a> {
         vertices: &'a StrokeVertices,
         ends: &[BridgeableEnd],
         candidates: &'a [Candidate],
+        on_gaps: &[EndOnGap],
         stroke_width: f64,
     ) -> Self {
         let mut slots: HashMap<u32, u8> = HashMap::new();
@@ -474,6 +477,7 @@ impl<'a> Matching<'a> {
             slots,
             stroke_of: ends.iter().map(|e| (e.vertex, e.stroke)).collect(),
             stroke_width,
+            on_gaps: on_gaps.iter().map(|g| (g.end, g.a, g.b)).collect(),
         }
     }
 
@@ -617,6 +621,21 @@ impl<'a> Matching<'a> {
                 }
             }
             result.push(Some(m));
+        }
+        // DECISION: an end that sits on the gap of a straight bridge the matching took ends on
+        // that bridge ([`defer_ends_on_gaps`]): it is no open end for another bridge to reach
+        // by giving that bridge up. A house's bottom line broken right at the door's foot: the
+        // straight bridge under the foot was given up for two corners, into the door's foot and
+        // from the door's other foot, and the door went into the outline.
+        for &(end, a, b) in &self.on_gaps {
+            let straight_taken = matched
+                .iter()
+                .any(|m| m.a == a && m.b == b && m.corner.is_none() && m.through.is_none());
+            if straight_taken {
+                if let Some(slots) = remaining.get_mut(&end) {
+                    *slots = 0;
+                }
+            }
         }
         // Strokes joined by the bridges so far: a new bridge that may close a loop must be short
         // next to it, as every loop-closing bridge (a line with a gap must not have its two outer
@@ -2947,7 +2966,7 @@ mod tests {
             bridge(1, 2, 13.0, 10.0),
             bridge(5, 6, 12.0, 10.0),
         ];
-        let matching = Matching::new(&vertices, &ends, &candidates, 3.0);
+        let matching = Matching::new(&vertices, &ends, &candidates, &[], 3.0);
         let rearrangeable = matching.rearrangeable(10.0);
         let uncrossed =
             matching.uncross(vec![&candidates[0], &candidates[1]], &rearrangeable, 60.0);
@@ -2959,10 +2978,63 @@ mod tests {
             bridge(1, 2, 13.0, 13.0),
             bridge(5, 6, 12.0, 12.0),
         ];
-        let matching = Matching::new(&vertices, &ends, &dearer, 3.0);
+        let matching = Matching::new(&vertices, &ends, &dearer, &[], 3.0);
         let rearrangeable = matching.rearrangeable(10.0);
         let kept = matching.uncross(vec![&dearer[0], &dearer[1]], &rearrangeable, 60.0);
         assert_eq!(pairs(&kept), [(1, 6), (2, 5)]);
+    }
+
+    #[test]
+    fn an_end_on_a_taken_straight_bridge_is_not_opened_by_rearranging() {
+        // A house's bottom line broken right where the door's right foot comes down on it: the
+        // bottom's end (vertex 1) and the wall's end turned along the bottom (4) face each other
+        // across the gap, and the door's foot (8) ends on that gap. The door's left foot (5) is
+        // a T-end on the bottom line. The straight bridge 1–4 was taken; two corners, 1–8 and
+        // 4–5, would join more ends, but the foot ends on the straight bridge, so it stays.
+        let strokes: [&[(f64, f64)]; 3] = [
+            &[(-60.0, 0.0), (0.0, 0.0)],
+            &[(40.0, -40.0), (40.0, 0.0), (24.0, 0.0)],
+            &[(-14.0, -2.0), (-14.0, -40.0), (10.0, -40.0), (10.0, -2.0)],
+        ];
+        let vertices = open_strokes(&strokes);
+        let end = |vertex: u32, stroke: usize, way: Vec2| BridgeableEnd {
+            vertex,
+            ..free_end(stroke, vertices.positions[vertex as usize], way, 0.0)
+        };
+        let down = Vec2::new(0.0, 1.0);
+        let ends = vec![
+            end(1, 0, Vec2::new(1.0, 0.0)),
+            end(4, 1, Vec2::new(-1.0, 0.0)),
+            BridgeableEnd {
+                attached: true,
+                at: Point::new(-14.0, 0.0),
+                ..end(5, 2, down)
+            },
+            end(8, 2, down),
+        ];
+        let corner = |a: u32, b: u32, cost: f64, at: (f64, f64)| Candidate {
+            corner: Some(Point::new(at.0, at.1)),
+            ..plain_bridge(&vertices, a, b, cost)
+        };
+        let candidates = [
+            plain_bridge(&vertices, 1, 4, 24.0),
+            corner(1, 8, 39.0, (10.0, 0.0)),
+            corner(4, 5, 57.0, (-14.0, 0.0)),
+        ];
+        let on_gap = EndOnGap {
+            end: 8,
+            a: 1,
+            b: 4,
+            at: Point::new(10.0, 0.0),
+        };
+        let matching = Matching::new(&vertices, &ends, &candidates, &[on_gap], 3.0);
+        let rearrangeable = matching.rearrangeable(20.0);
+        let kept = matching.augment(vec![&candidates[0]], &rearrangeable);
+        assert_eq!(pairs(&kept), [(1, 4)]);
+        // Were the foot no end on the gap, the two corners would join more ends.
+        let matching = Matching::new(&vertices, &ends, &candidates, &[], 3.0);
+        let augmented = matching.augment(vec![&candidates[0]], &rearrangeable);
+        assert_eq!(pairs(&augmented), [(1, 8), (4, 5)]);
     }
 
     #[test]
@@ -2978,7 +3050,7 @@ mod tests {
             plain_bridge(&vertices, 1, 4, 12.0),
             plain_bridge(&vertices, 3, 7, 20.0),
         ];
-        let matching = Matching::new(&vertices, &ends, &candidates, 3.0);
+        let matching = Matching::new(&vertices, &ends, &candidates, &[], 3.0);
         let rearrangeable = matching.rearrangeable(10.0);
         let repaired =
             matching.repair_pairings(vec![&candidates[0], &candidates[1]], &rearrangeable);
@@ -2990,7 +3062,7 @@ mod tests {
             plain_bridge(&vertices, 1, 4, 12.0),
             plain_bridge(&vertices, 3, 7, 20.0),
         ];
-        let matching = Matching::new(&vertices, &ends, &dearer, 3.0);
+        let matching = Matching::new(&vertices, &ends, &dearer, &[], 3.0);
         let rearrangeable = matching.rearrangeable(10.0);
         let kept = matching.repair_pairings(vec![&dearer[0], &dearer[1]], &rearrangeable);
         assert_eq!(pairs(&kept), [(1, 3), (4, 7)]);
