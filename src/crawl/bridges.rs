@@ -11,7 +11,9 @@ use std::collections::{HashMap, HashSet};
 use kurbo::{Point, Vec2};
 
 use super::strokes::{point_key, PointKey, StrokeVertices};
-use super::through::{angle, through_candidates, ThroughCandidate, ThroughCorner, ARM_IN_SPACINGS};
+use super::through::{
+    angle, junction_reach, through_candidates, ThroughCandidate, ThroughCorner, ARM_IN_SPACINGS,
+};
 use crate::geometry::grid::PointGrid;
 use crate::geometry::polyline::{distance_to_segment, lines_meet, polyline_length};
 use crate::geometry::UnionFind;
@@ -362,7 +364,7 @@ pub(super) fn match_gap_bridges(
     // Ends a bridge took or that ended on a gap take no more.
     let mut used = bridged;
     used.extend(attached);
-    bridge_cut_arms(ends, &mut result, used, typical_gap, stroke_width);
+    bridge_cut_arms(ends, &mut result, used, typical_gap, stroke_width, spacing);
     result
 }
 
@@ -374,7 +376,8 @@ pub(super) fn match_gap_bridges(
 /// into the stem's lower half and the leg starting a gap away. The corner point is where they
 /// turn. Cheapest first (as straight bridges cost), each end once. Measured on the benchmark:
 /// dev 318 → 319 (a "K"), val unchanged. Also (stop 24) a T-end that took no bridge and whose
-/// junction lies within a pen width of the corner point goes on from there along the arm: a
+/// junction lies within a pen width (or a sample spacing, [`junction_reach`]; stop 45) of the
+/// corner point goes on from there along the arm: a
 /// "K"'s arm ends on the stem where its leg was cut off the corner (seed 3 one drawing, val one,
 /// none lost).
 fn bridge_cut_arms(
@@ -383,8 +386,10 @@ fn bridge_cut_arms(
     mut used: HashSet<u32>,
     typical_gap: f64,
     stroke_width: f64,
+    spacing: f64,
 ) {
     let limit = BRIDGE_MAX_IN_TYPICAL_GAPS * typical_gap;
+    let junction_near = junction_reach(stroke_width, spacing);
     // The ink gap is the distance less a pen width: no farther end can be within the limit.
     let reach = limit + stroke_width;
     let straight_limit = MAX_STRAIGHT_TURN_DEGREES.to_radians();
@@ -422,13 +427,13 @@ fn bridge_cut_arms(
                 options.push((continuation_cost(length, least, 0.0), arm, free.vertex, at));
             }
         }
-        let first = t_ends.partition_point(|e| e.at.x < at.x - stroke_width);
+        let first = t_ends.partition_point(|e| e.at.x < at.x - junction_near);
         for t_end in t_ends[first..]
             .iter()
-            .take_while(|e| e.at.x <= at.x + stroke_width)
+            .take_while(|e| e.at.x <= at.x + junction_near)
         {
             let distance = t_end.at.distance(at);
-            if distance <= stroke_width && t_end.vertex != arm {
+            if distance <= junction_near && t_end.vertex != arm {
                 options.push((distance, arm, t_end.vertex, at));
             }
         }
@@ -1318,7 +1323,13 @@ fn bridge_candidates(
         !end.is_some_and(|partner| cusps.contains(&(candidate.end, partner)))
     });
     let end_at: HashMap<u32, &BridgeableEnd> = ends.iter().rev().map(|e| (e.vertex, e)).collect();
-    drop_t_ends_across_through_corners(&mut candidates, &through, &end_at, vertices, stroke_width);
+    drop_t_ends_across_through_corners(
+        &mut candidates,
+        &through,
+        &end_at,
+        vertices,
+        junction_reach(stroke_width, spacing),
+    );
     candidates.extend(through.into_iter().map(|c| Candidate {
         cost: c.cost,
         least_cost: c.cost,
@@ -1436,7 +1447,8 @@ fn cut_arm_end(vertices: &StrokeVertices, corner: &ThroughCorner) -> Option<u32>
 }
 
 /// DECISION: (stop 24) a T-end is never bridged to a free end that may go on through a corner
-/// lying within a pen width of the T's junction ([`super::through`]): that end's line goes on
+/// lying within `near` of the T's junction (a pen width or a sample spacing,
+/// [`junction_reach`]; stop 45) ([`super::through`]): that end's line goes on
 /// through the stroke the T ran into, where it is broken, and the T ends on it there anyway (a
 /// "K" whose stem is broken just below the junction: the arm's end took the lower stem round a
 /// corner at the junction, and the leg went on into the upper stem). Measured on the benchmark,
@@ -1447,7 +1459,7 @@ fn drop_t_ends_across_through_corners(
     through: &[ThroughCandidate],
     end_at: &HashMap<u32, &BridgeableEnd>,
     vertices: &StrokeVertices,
-    stroke_width: f64,
+    near: f64,
 ) {
     // Only free ends go through corners ([`through_candidates`]).
     let mut through_corners: HashMap<u32, Vec<Point>> = HashMap::new();
@@ -1465,7 +1477,7 @@ fn drop_t_ends_across_through_corners(
     let t_end_on_a_corner_of = |free: u32, other: u32| {
         through_corners.get(&free).is_some_and(|corners| {
             let t_end = end_at[&other];
-            t_end.attached && corners.iter().any(|c| c.distance(t_end.at) <= stroke_width)
+            t_end.attached && corners.iter().any(|c| c.distance(t_end.at) <= near)
         })
     };
     candidates.retain(|candidate| {

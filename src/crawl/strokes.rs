@@ -1700,6 +1700,42 @@ mod tests {
     }
 
     #[test]
+    fn a_k_whose_junction_lies_a_spacing_off_the_corner_keeps_its_stem_and_its_v() {
+        // The "K" above drawn with a thin pen (3 px, samples 4.5 px apart) as thinning leaves it
+        // (measured on the benchmark): the arm's T-end meets the upper stem 3.2 px above and
+        // beside the corner where the skeleton turns into the leg, more than a pen width from
+        // the corner's vertex but within a spacing. It is the same junction: the stem goes on
+        // through, and the arm and the leg are one line turning there.
+        let mut upper_and_leg = line((0.0, 0.0), (0.0, 40.0));
+        upper_and_leg.extend(line((0.0, 40.0), (40.0, 70.0)).into_iter().skip(1));
+        let mut arm = open(&line((40.0, 10.0), (1.0, 37.0)));
+        arm.ends[1] = StrokeEnd::Attached(Point::new(1.0, 37.0));
+        let strokes = vec![
+            open(&upper_and_leg),
+            arm,
+            open(&line((0.0, 48.0), (0.0, 90.0))),
+        ];
+        let curves = connect(&strokes, Method::Strokes, 4.5, 3.0);
+        assert_eq!(curves.len(), 2, "{curves:?}");
+        assert!(
+            has_straight_curve(&curves, (0.0, 0.0), (0.0, 90.0)),
+            "{curves:?}"
+        );
+        let near = |curve: &Polyline, x: f64, y: f64| {
+            curve
+                .points
+                .iter()
+                .any(|p| p.distance(Point::new(x, y)) < 4.0)
+        };
+        assert!(
+            curves
+                .iter()
+                .any(|c| near(c, 40.0, 10.0) && near(c, 0.0, 40.0) && near(c, 40.0, 70.0)),
+            "{curves:?}"
+        );
+    }
+
+    #[test]
     fn a_stem_broken_just_below_a_crossbar_goes_on_through_the_corner() {
         // An "H"'s left stem with a gap just below the crossbar: the skeleton joins the upper
         // stem and the crossbar in an "L", and the lower stem ends 8 px below its corner,

@@ -28,9 +28,24 @@ const MIN_CORNER_TURN_DEGREES: f64 = 45.0;
 /// seed 1. A lower turn everywhere (stop 27) lost drawings on both held-out splits.
 const MIN_CORNER_TURN_AT_JUNCTION_DEGREES: f64 = 30.0;
 
-/// A corner's vertex is at a junction where a T-end's junction point lies within this many pen
-/// widths of it (1.5 px for a 3 px pen; a pen width also loses an arch on seed 4).
-const JUNCTION_NEAR_IN_PEN_WIDTHS: f64 = 0.5;
+/// A corner's vertex is at a junction where a T-end's junction point lies within this share of
+/// [`junction_reach`] of it (1.5 px for a 3 px pen; a whole pen width also loses an arch on seed 4).
+const JUNCTION_NEAR_SHARE: f64 = 0.5;
+
+/// DECISION: (stop 45) how far a stroke's corner vertex may lie from a junction point and still
+/// be the same place: a pen width, or a sample spacing where that is more. The corner's vertex is
+/// a sample, and the samples of a stroke lie a spacing apart, so the vertex nearest the point
+/// where the skeleton's branches meet can be up to half a spacing from it along the stroke,
+/// plus the rounding of the corner across it. With a thin pen (3 px, spacing 4.5 px) a "K"'s
+/// junction lay 1.8 px and 3.2 px from the corner vertex of the stroke through it, beyond half a
+/// pen and a pen: its corner was no junction's (so under 45° it was no corner), its leg's T-end
+/// was still bridged to the broken stem's end, and the cut arm was not joined to the T-end at
+/// the corner. Used here at [`JUNCTION_NEAR_SHARE`] and whole by the bridges
+/// ([`super::bridges`]). Measured on the benchmark: seeds 1, 3, 5 and validation unchanged,
+/// seed 4 +2, and three fresh seeds (6, 7, 8) +1, 0, +2; none lost.
+pub(super) fn junction_reach(stroke_width: f64, spacing: f64) -> f64 {
+    stroke_width.max(spacing)
+}
 
 /// The arms of a corner are measured this many sample spacings from it: far enough that the
 /// skeleton's rounding of the corner does not bend them.
@@ -127,7 +142,8 @@ pub(super) fn through_candidates(
         .filter(|end| end.attached)
         .map(|end| end.at)
         .collect();
-    let corners = find_corners(vertices, arm, &junctions, stroke_width);
+    let near_junction = JUNCTION_NEAR_SHARE * junction_reach(stroke_width, spacing);
+    let corners = find_corners(vertices, arm, &junctions, near_junction);
     if corners.is_empty() || reach <= 0.0 {
         return Vec::new();
     }
@@ -288,18 +304,18 @@ type TurnAt = (f64, [Vec2; 2], [Point; 2]);
 
 /// The sharp corners of every stroke: vertices where the stroke turns by more than
 /// [`MIN_CORNER_TURN_DEGREES`] between its arms measured `arm` away (by more than
-/// [`MIN_CORNER_TURN_AT_JUNCTION_DEGREES`] at a vertex beside one of the `junctions`, where
-/// T-ends end), the sharpest of each run of such vertices. Both arms must reach `arm`; a closed
-/// stroke's corners may lie anywhere on it.
+/// [`MIN_CORNER_TURN_AT_JUNCTION_DEGREES`] at a vertex within `near_junction` of one of the
+/// `junctions`, where T-ends end), the sharpest of each run of such vertices. Both arms must
+/// reach `arm`; a closed stroke's corners may lie anywhere on it.
 fn find_corners(
     vertices: &StrokeVertices,
     arm: f64,
     junctions: &[Point],
-    stroke_width: f64,
+    near_junction: f64,
 ) -> Vec<Corner> {
     let min_turn = MIN_CORNER_TURN_DEGREES.to_radians();
     let min_turn_at_junction = MIN_CORNER_TURN_AT_JUNCTION_DEGREES.to_radians();
-    let near = (JUNCTION_NEAR_IN_PEN_WIDTHS * stroke_width).max(f64::MIN_POSITIVE);
+    let near = near_junction.max(f64::MIN_POSITIVE);
     // The junctions in cells `near` wide (a page of noise has hundreds of thousands).
     let mut by_cell = PointGrid::new(near);
     for &junction in junctions {
