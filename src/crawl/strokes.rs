@@ -1736,6 +1736,35 @@ mod tests {
     }
 
     #[test]
+    fn a_thick_k_whose_stem_broke_below_the_junction_keeps_its_stem_and_its_v() {
+        // A thick pen's "K" (7 px, samples 10.5 px apart, as measured on the benchmark): the
+        // skeleton joins the upper stem and the leg in a corner at the junction, a stub of the
+        // arm ends there (a T), the rest of the arm lies beyond a pen lift, and the lower stem
+        // starts 14 px below the junction. The stem's top end and the lower stem's upper end
+        // both point up, one behind the other on the stem's line: no corner joins them (it
+        // would run up the whole upper stem); the lower stem goes on through the junction.
+        // (Drawn upright here.)
+        let mut upper_and_leg = line((0.0, 0.0), (0.0, 58.0));
+        upper_and_leg.extend(line((0.0, 58.0), (66.0, 99.0)).into_iter().skip(1));
+        let stub = Stroke {
+            ends: [StrokeEnd::Attached(Point::new(-0.7, 52.3)), StrokeEnd::Free],
+            ..open(&line((-0.7, 52.3), (20.0, 34.0)))
+        };
+        let strokes = vec![
+            open(&upper_and_leg),
+            stub,
+            open(&line((32.0, 21.0), (58.0, -7.0))),
+            open(&line((0.0, 72.0), (0.0, 102.0))),
+        ];
+        let curves = connect(&strokes, Method::Strokes, 10.5, 7.0);
+        assert_eq!(curves.len(), 2, "{curves:?}");
+        assert!(
+            has_straight_curve(&curves, (0.0, -3.5), (0.0, 105.5)),
+            "{curves:?}"
+        );
+    }
+
+    #[test]
     fn a_stem_broken_just_below_a_crossbar_goes_on_through_the_corner() {
         // An "H"'s left stem with a gap just below the crossbar: the skeleton joins the upper
         // stem and the crossbar in an "L", and the lower stem ends 8 px below its corner,
