@@ -632,13 +632,17 @@ impl<'a> Matching<'a> {
         // by giving that bridge up. A house's bottom line broken right at the door's foot: the
         // straight bridge under the foot was given up for two corners, into the door's foot and
         // from the door's other foot, and the door went into the outline.
-        for &(end, a, b) in &self.on_gaps {
-            let straight_taken = matched
+        if !self.on_gaps.is_empty() {
+            let straight_taken: HashSet<(u32, u32)> = matched
                 .iter()
-                .any(|m| m.a == a && m.b == b && m.corner.is_none() && m.through.is_none());
-            if straight_taken {
-                if let Some(slots) = remaining.get_mut(&end) {
-                    *slots = 0;
+                .filter(|m| m.corner.is_none() && m.through.is_none())
+                .map(|m| (m.a, m.b))
+                .collect();
+            for &(end, a, b) in &self.on_gaps {
+                if straight_taken.contains(&(a, b)) {
+                    if let Some(slots) = remaining.get_mut(&end) {
+                        *slots = 0;
+                    }
                 }
             }
         }
