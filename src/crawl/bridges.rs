@@ -1779,19 +1779,19 @@ const ONE_LINE_MIN_RUN_BACK_SHARE: f64 = 0.75;
 /// DECISION: (stop 45) two free ends that point the same way, one behind the other on one line
 /// (each within [`ONE_LINE_MAX_ACROSS_IN_PEN_WIDTHS`] of the other's line, more than a pen width
 /// apart), where the stroke of the end ahead runs back along that line (within a pen width)
-/// [`ONE_LINE_MIN_RUN_BACK_SHARE`] of the way to the end behind, are never bridged: the corner ahead of both lies on the line, and the way there
-/// runs back along that stroke's own ink. Two sides of a tip lie side by side, a pen width or
-/// more apart, or their ink would be one line (where it is, one side is the other's band
-/// partner, and the rule does not apply). A thick "K" whose stem broke just below the junction:
-/// the stem's top end and the lower stem's upper end both point up, 72 px apart on the stem's
-/// line; their "corner" ran up the whole upper stem (alongside ink, so within the gap limit at a
-/// same-way corner's cost), and it beat the lower stem going on through the junction's corner.
-/// An end whose stroke hooks off the line just behind it (an animal's leg whose top curls into
-/// the body's line; with half the way instead of three quarters that leg was lost) still may
-/// take such a corner. Measured on the benchmark: seeds 1, 3, 5 394, 392, 384 → 394, 393, 384
-/// (`letters-thin-001`), validation and seed 4 unchanged (384, 384), fresh seeds 6, 7, 8 +1,
-/// +2, 0 (two "K"s and a scanned word); none lost. Without the band partner condition, two
-/// thin spikes whose tip piece lies on the line of the band's side are lost.
+/// [`ONE_LINE_MIN_RUN_BACK_SHARE`] of the way to the end behind, are never bridged: the corner
+/// ahead of both lies on the line, and the way there runs back along that stroke's own ink. Two
+/// sides of a tip lie side by side, a pen width or more apart, or their ink would be one line
+/// (where it is, one side is the other's band partner, and the rule does not apply). A thick "K"
+/// whose stem broke just below the junction: the stem's top end and the lower stem's upper end both
+/// point up, 72 px apart on the stem's line; their "corner" ran up the whole upper stem (alongside
+/// ink, so within the gap limit at a same-way corner's cost), and it beat the lower stem going on
+/// through the junction's corner. An end whose stroke hooks off the line just behind it (an
+/// animal's leg whose top curls into the body's line; with half the way instead of three quarters
+/// that leg was lost) still may take such a corner. Measured on the benchmark: seeds 1, 3, 5 394,
+/// 392, 384 → 394, 393, 384 (`letters-thin-001`), validation and seed 4 unchanged (384, 384), fresh
+/// seeds 6, 7, 8 +1, +2, 0 (two "K"s and a scanned word); none lost. Without the band partner
+/// condition, two thin spikes whose tip piece lies on the line of the band's side are lost.
 fn one_behind_the_other(
     vertices: &StrokeVertices,
     a: &BridgeableEnd,

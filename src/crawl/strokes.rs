@@ -1665,74 +1665,53 @@ mod tests {
         })
     }
 
-    #[test]
-    fn a_k_whose_stem_is_broken_below_the_junction_keeps_its_stem_and_its_v() {
-        // A "K": the skeleton joins the upper stem and the leg in a corner at (0, 40), the arm
-        // ends on that junction (a T), and the lower stem starts 8 px below it. The stem goes
-        // on through the junction; the arm and the leg are one line turning there.
+    /// A "K" whose skeleton joins the upper stem and the leg in a corner at (0, 40), the arm
+    /// ending on the stem as a T at `arm_meets`, and the lower stem starting 8 px below the
+    /// corner, traced with `spacing` and a 3 px pen: the stem goes on through the junction, and
+    /// the arm and the leg are one line turning there (within `near` of the corner).
+    fn assert_k_keeps_its_stem_and_its_v(arm_meets: (f64, f64), spacing: f64, near: f64) {
         let mut upper_and_leg = line((0.0, 0.0), (0.0, 40.0));
         upper_and_leg.extend(line((0.0, 40.0), (40.0, 70.0)).into_iter().skip(1));
-        let mut arm = open(&line((40.0, 10.0), (0.0, 40.0)));
-        arm.ends[1] = StrokeEnd::Attached(Point::new(0.0, 40.0));
+        let mut arm = open(&line((40.0, 10.0), arm_meets));
+        arm.ends[1] = StrokeEnd::Attached(Point::new(arm_meets.0, arm_meets.1));
         let strokes = vec![
             open(&upper_and_leg),
             arm,
             open(&line((0.0, 48.0), (0.0, 90.0))),
         ];
-        let curves = connect(&strokes, Method::Strokes, 4.0, 3.0);
+        let curves = connect(&strokes, Method::Strokes, spacing, 3.0);
         assert_eq!(curves.len(), 2, "{curves:?}");
         assert!(
             has_straight_curve(&curves, (0.0, 0.0), (0.0, 90.0)),
             "{curves:?}"
         );
-        let near = |curve: &Polyline, x: f64, y: f64| {
+        let passes = |curve: &Polyline, x: f64, y: f64| {
             curve
                 .points
                 .iter()
-                .any(|p| p.distance(Point::new(x, y)) < 3.0)
+                .any(|p| p.distance(Point::new(x, y)) < near)
         };
         assert!(
             curves
                 .iter()
-                .any(|c| near(c, 40.0, 10.0) && near(c, 0.0, 40.0) && near(c, 40.0, 70.0)),
+                .any(|c| passes(c, 40.0, 10.0) && passes(c, 0.0, 40.0) && passes(c, 40.0, 70.0)),
             "{curves:?}"
         );
     }
 
     #[test]
+    fn a_k_whose_stem_is_broken_below_the_junction_keeps_its_stem_and_its_v() {
+        // The arm ends right on the corner.
+        assert_k_keeps_its_stem_and_its_v((0.0, 40.0), 4.0, 3.0);
+    }
+
+    #[test]
     fn a_k_whose_junction_lies_a_spacing_off_the_corner_keeps_its_stem_and_its_v() {
-        // The "K" above drawn with a thin pen (3 px, samples 4.5 px apart) as thinning leaves it
-        // (measured on the benchmark): the arm's T-end meets the upper stem 3.2 px above and
-        // beside the corner where the skeleton turns into the leg, more than a pen width from
-        // the corner's vertex but within a spacing. It is the same junction: the stem goes on
-        // through, and the arm and the leg are one line turning there.
-        let mut upper_and_leg = line((0.0, 0.0), (0.0, 40.0));
-        upper_and_leg.extend(line((0.0, 40.0), (40.0, 70.0)).into_iter().skip(1));
-        let mut arm = open(&line((40.0, 10.0), (1.0, 37.0)));
-        arm.ends[1] = StrokeEnd::Attached(Point::new(1.0, 37.0));
-        let strokes = vec![
-            open(&upper_and_leg),
-            arm,
-            open(&line((0.0, 48.0), (0.0, 90.0))),
-        ];
-        let curves = connect(&strokes, Method::Strokes, 4.5, 3.0);
-        assert_eq!(curves.len(), 2, "{curves:?}");
-        assert!(
-            has_straight_curve(&curves, (0.0, 0.0), (0.0, 90.0)),
-            "{curves:?}"
-        );
-        let near = |curve: &Polyline, x: f64, y: f64| {
-            curve
-                .points
-                .iter()
-                .any(|p| p.distance(Point::new(x, y)) < 4.0)
-        };
-        assert!(
-            curves
-                .iter()
-                .any(|c| near(c, 40.0, 10.0) && near(c, 0.0, 40.0) && near(c, 40.0, 70.0)),
-            "{curves:?}"
-        );
+        // Drawn with a thin pen (3 px, samples 4.5 px apart) as thinning leaves it (measured on
+        // the benchmark): the arm's T-end meets the upper stem 3.2 px above and beside the
+        // corner where the skeleton turns into the leg, more than a pen width from the corner's
+        // vertex but within a spacing. It is the same junction.
+        assert_k_keeps_its_stem_and_its_v((1.0, 37.0), 4.5, 4.0);
     }
 
     #[test]

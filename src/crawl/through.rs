@@ -29,7 +29,8 @@ const MIN_CORNER_TURN_DEGREES: f64 = 45.0;
 const MIN_CORNER_TURN_AT_JUNCTION_DEGREES: f64 = 30.0;
 
 /// A corner's vertex is at a junction where a T-end's junction point lies within this share of
-/// [`junction_reach`] of it (1.5 px for a 3 px pen; a whole pen width also loses an arch on seed 4).
+/// [`junction_reach`] of it (1.5 px for a 3 px pen; a whole pen width also loses an arch on
+/// seed 4).
 const JUNCTION_NEAR_SHARE: f64 = 0.5;
 
 /// DECISION: (stop 45) how far a stroke's corner vertex may lie from a junction point and still
