@@ -460,8 +460,8 @@ struct Matching<'a> {
     slots: HashMap<u32, u8>,
     stroke_of: HashMap<u32, usize>,
     stroke_width: f64,
-    /// The ends that sit on the gap between two others, as (end, a, b) ([`EndOnGap`]).
-    on_gaps: Vec<(u32, u32, u32)>,
+    /// The ends that sit on the gap between two others ([`defer_ends_on_gaps`]).
+    on_gaps: &'a [EndOnGap],
 }
 
 impl<'a> Matching<'a> {
@@ -469,7 +469,7 @@ impl<'a> Matching<'a> {
         vertices: &'a StrokeVertices,
         ends: &[BridgeableEnd],
         candidates: &'a [Candidate],
-        on_gaps: &[EndOnGap],
+        on_gaps: &'a [EndOnGap],
         stroke_width: f64,
     ) -> Self {
         let mut slots: HashMap<u32, u8> = HashMap::new();
@@ -482,7 +482,7 @@ impl<'a> Matching<'a> {
             slots,
             stroke_of: ends.iter().map(|e| (e.vertex, e.stroke)).collect(),
             stroke_width,
-            on_gaps: on_gaps.iter().map(|g| (g.end, g.a, g.b)).collect(),
+            on_gaps,
         }
     }
 
@@ -638,9 +638,9 @@ impl<'a> Matching<'a> {
                 .filter(|m| m.corner.is_none() && m.through.is_none())
                 .map(|m| (m.a, m.b))
                 .collect();
-            for &(end, a, b) in &self.on_gaps {
-                if straight_taken.contains(&(a, b)) {
-                    if let Some(slots) = remaining.get_mut(&end) {
+            for on_gap in self.on_gaps {
+                if straight_taken.contains(&(on_gap.a, on_gap.b)) {
+                    if let Some(slots) = remaining.get_mut(&on_gap.end) {
                         *slots = 0;
                     }
                 }
@@ -3017,6 +3017,22 @@ mod tests {
         }
     }
 
+    /// A plain bridge between the free ends `ends[a]` and `ends[b]` (each numbered as its
+    /// index), costing `cost`.
+    fn straight_between(ends: &[BridgeableEnd], a: u32, b: u32, cost: f64) -> Candidate {
+        Candidate {
+            cost,
+            least_cost: cost,
+            length: ends[a as usize].at.distance(ends[b as usize].at),
+            alongside: 0.0,
+            a,
+            b,
+            corner: None,
+            between_free_ends: true,
+            through: None,
+        }
+    }
+
     /// The pairs of ends `bridges` join, each pair in order and the pairs sorted.
     fn pairs(bridges: &[&Candidate]) -> Vec<(u32, u32)> {
         let mut pairs: Vec<(u32, u32)> = bridges
@@ -3117,13 +3133,13 @@ mod tests {
             corner(1, 8, 39.0, (10.0, 0.0)),
             corner(4, 5, 57.0, (-14.0, 0.0)),
         ];
-        let on_gap = EndOnGap {
+        let on_gaps = [EndOnGap {
             end: 8,
             a: 1,
             b: 4,
             at: Point::new(10.0, 0.0),
-        };
-        let matching = Matching::new(&vertices, &ends, &candidates, &[on_gap], 3.0);
+        }];
+        let matching = Matching::new(&vertices, &ends, &candidates, &on_gaps, 3.0);
         let rearrangeable = matching.rearrangeable(20.0);
         let kept = matching.augment(vec![&candidates[0]], &rearrangeable);
         assert_eq!(pairs(&kept), [(1, 4)]);
@@ -3198,17 +3214,7 @@ mod tests {
             free_end(2, Point::new(696.5, 385.5), Vec2::new(0.67, -0.75), 0.0),
         ];
         let end_at: HashMap<u32, &BridgeableEnd> = ends.iter().map(|e| (e.vertex, e)).collect();
-        let bridge = |a: u32, b: u32, cost: f64| Candidate {
-            cost,
-            least_cost: cost,
-            length: ends[a as usize].at.distance(ends[b as usize].at),
-            alongside: 0.0,
-            a,
-            b,
-            corner: None,
-            between_free_ends: true,
-            through: None,
-        };
+        let bridge = |a: u32, b: u32, cost: f64| straight_between(&ends, a, b, cost);
         let mut candidates = vec![bridge(0, 1, 33.3), bridge(0, 2, 23.7), bridge(1, 2, 19.7)];
         let on_gaps = defer_ends_on_gaps(&mut candidates, &end_at, 6.9);
         assert!(!on_gaps.is_empty() && on_gaps.iter().all(|g| g.end == 2));
@@ -3235,17 +3241,7 @@ mod tests {
                 end(2, 0.5, 12.0, curled, bend),
             ];
             let end_at: HashMap<u32, &BridgeableEnd> = ends.iter().map(|e| (e.vertex, e)).collect();
-            let bridge = |a: u32, b: u32, cost: f64| Candidate {
-                cost,
-                least_cost: cost,
-                length: ends[a as usize].at.distance(ends[b as usize].at),
-                alongside: 0.0,
-                a,
-                b,
-                corner: None,
-                between_free_ends: true,
-                through: None,
-            };
+            let bridge = |a: u32, b: u32, cost: f64| straight_between(&ends, a, b, cost);
             let mut candidates = vec![bridge(0, 1, 50.0), bridge(0, 2, 12.0), bridge(1, 2, 38.0)];
             let on_gaps = defer_ends_on_gaps(&mut candidates, &end_at, 3.0);
             assert_eq!(!on_gaps.is_empty(), deferred, "bend {bend}");
