@@ -166,6 +166,18 @@ pub fn join_free_ends_to_spike_tips(curves: &mut Vec<Polyline>, mask: &Bitmap, s
     if offers.is_empty() {
         return;
     }
+    // DECISION: (stop 46) a join runs straight from the free end to the tip; where another curve
+    // already traces all of that ink, the two ends are the feet of a shape standing on that
+    // curve's line (a house's door on its floor, its ink read as wide where the floor crosses it),
+    // not the two sides of a spike whose tip the pen left out. Measured on the benchmark: with
+    // the redundant arcs' rule on the junctions ([`super::contacts`]) seed 7 gains a house, none
+    // lost on the eight splits; alone nothing changes (the door then went in there).
+    let on_curve = ON_CURVE_IN_PEN_WIDTHS * stroke_width;
+    let segments = SegmentGrid::new(curves, on_curve);
+    offers.retain(|&(_, from, tip)| {
+        let (a, b) = (from.point(curves), tip.point(curves));
+        !segments.traced_by_another(curves, a, b, [from.curve, tip.curve], on_curve)
+    });
     // Nearest first, each end joined once.
     offers.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)).then(a.2.cmp(&b.2)));
     let mut joined: HashMap<CurveEnd, CurveEnd> = HashMap::new();
@@ -334,6 +346,36 @@ impl SegmentGrid {
             }
         }
         Self { grid }
+    }
+
+    /// Whether the ink between `a` and `b` is already traced by a curve other than `joined`:
+    /// every point of the segment farther than `reach` from both ends lies within `reach` of
+    /// such a curve (and there is at least one such point).
+    fn traced_by_another(
+        &self,
+        curves: &[Polyline],
+        a: Point,
+        b: Point,
+        joined: [usize; 2],
+        reach: f64,
+    ) -> bool {
+        let steps = a.distance(b).ceil() as usize;
+        let mut inner = (1..steps)
+            .map(|k| a.lerp(b, k as f64 / steps as f64))
+            .filter(|p| p.distance(a) > reach && p.distance(b) > reach)
+            .peekable();
+        inner.peek().is_some()
+            && inner.all(|p| {
+                self.grid.around(p).any(|&(i, s)| {
+                    let curve = &curves[i];
+                    let n = curve.points.len();
+                    !joined.contains(&i)
+                        && distance_to_segment(
+                            p,
+                            Line::new(curve.points[s], curve.points[(s + 1) % n]),
+                        ) <= reach
+                })
+            })
     }
 
     /// The curve other than `own` that passes nearest to `point`, within `reach`; segments of
@@ -550,6 +592,46 @@ mod tests {
         let (mut curves, mask, _, _) = v_with_a_lift(false);
         let before = curves.clone();
         join_free_ends_to_spike_tips(&mut curves, &mask, 4.0);
+        assert_eq!(curves, before);
+    }
+
+    #[test]
+    fn a_door_standing_on_the_floor_is_not_closed_along_it() {
+        // A house's outline and a door 20 px wide on its floor, both drawn with a 6-px pen. The
+        // door's curve ends where the crawl ended it at the two junctions: on the floor's centre
+        // line, its last step a pixel along the floor. Across its right foot the ink runs along
+        // the floor (read as wide as a collapsed spike), and its left foot points at the root
+        // of that "spike"; but the floor between the feet is the outline's ink, not a gap.
+        let house = [
+            Point::new(10.0, 110.0),
+            Point::new(10.0, 40.0),
+            Point::new(110.0, 40.0),
+            Point::new(110.0, 110.0),
+        ];
+        let door = [
+            Point::new(72.0, 110.0),
+            Point::new(71.5, 109.0),
+            Point::new(71.0, 104.0),
+            Point::new(70.0, 96.0),
+            Point::new(69.0, 88.0),
+            Point::new(68.0, 82.0),
+            Point::new(60.0, 81.0),
+            Point::new(52.0, 82.0),
+            Point::new(51.0, 88.0),
+            Point::new(50.0, 96.0),
+            Point::new(50.0, 104.0),
+            Point::new(51.0, 109.0),
+            Point::new(51.5, 110.0),
+        ];
+        let mut mask = Bitmap::new(120, 120);
+        ink(&mut mask, &house, true, 6.0);
+        ink(&mut mask, &door, false, 6.0);
+        let mut curves = vec![
+            Polyline::new(sampled(&house, true), true),
+            Polyline::new(door.to_vec(), false),
+        ];
+        let before = curves.clone();
+        join_free_ends_to_spike_tips(&mut curves, &mask, 6.0);
         assert_eq!(curves, before);
     }
 
