@@ -1715,6 +1715,48 @@ mod tests {
     }
 
     #[test]
+    fn a_floor_broken_at_the_doors_foot_goes_on_under_the_door() {
+        // A house and its door drawn with a 7-px pen (samples 10.5 px apart) in one stroke: from
+        // the floor's left part round the walls and the roof, along the floor's right part to
+        // the door's foot (50, 100), up the door's near leg, across its top and down its far
+        // leg to a T on the floor a pixel above its centre line. The floor's left part ends 20
+        // px short of the door's foot; a dashed line elsewhere on the page has gaps as long.
+        // The floor goes on through the foot under the door and closes the house (not round a
+        // corner along the floor's ink to the far leg's T), and the door is a line of its own
+        // from foot to foot.
+        let corners = [
+            (30.0, 100.0),
+            (0.0, 100.0),
+            (0.0, 40.0),
+            (55.0, 10.0),
+            (110.0, 40.0),
+            (110.0, 100.0),
+            (50.0, 100.0),
+            (50.0, 60.0),
+            (75.0, 60.0),
+            (75.0, 98.5),
+        ];
+        let mut house = line(corners[0], corners[1]);
+        for pair in corners[1..].windows(2) {
+            house.extend(line(pair[0], pair[1]).into_iter().skip(1));
+        }
+        let mut house = open(&house);
+        house.ends[1] = StrokeEnd::Attached(Point::new(75.0, 99.0));
+        let mut strokes = vec![house];
+        strokes.extend((0..3).map(|k| {
+            let x = 60.0 * f64::from(k);
+            open(&line((x, 200.0), (x + 40.0, 200.0)))
+        }));
+        let (pen, spacing) = (7.0, 10.5);
+        let curves = connect(&strokes, Method::Strokes, spacing, pen);
+        let door = curves
+            .iter()
+            .find(|c| runs_between(c, (50.0, 100.0), (75.0, 100.0), pen));
+        assert!(door.is_some_and(|door| !door.closed), "{curves:?}");
+        assert!(curves.iter().any(|c| c.closed), "{curves:?}");
+    }
+
+    #[test]
     fn a_thick_k_whose_stem_broke_below_the_junction_keeps_its_stem_and_its_v() {
         // A thick pen's "K" (7 px, samples 10.5 px apart, as measured on the benchmark): the
         // skeleton joins the upper stem and the leg in a corner at the junction, a stub of the
