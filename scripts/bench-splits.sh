@@ -1,0 +1,54 @@
+#!/usr/bin/env bash
+# Scores the current build on the benchmark's eight splits and compares it with an earlier run:
+# totals, line art and touching parts per split, and the drawings gained and lost.
+# Usage: scripts/bench-splits.sh TAG [BASE_TAG]   (from anywhere; builds the release examples first)
+#   TAG       a name for this run; its per-drawing results go to $BENCH_DIR/results/TAG-SEED.jsonl
+#   BASE_TAG  an earlier run's name to compare with (gained/lost drawings per split)
+# The splits are generated once into $BENCH_DIR (default /tmp/crawltrace-bench), seed 1 to 8.
+# Seeds 1, 3, 5, 6, 7 and 8 are development splits; seed 2 is the validation split and seed 4 is
+# held out: measure them, never tune on them, never look at their drawings (docs/benchmark.md).
+set -euo pipefail
+tag=${1:?usage: scripts/bench-splits.sh TAG [BASE_TAG]}
+base=${2:-}
+cd "$(dirname "$0")/.."
+cargo build --release --quiet --examples
+bench=${BENCH_DIR:-/tmp/crawltrace-bench}
+mkdir -p "$bench/results"
+for seed in 1 2 3 4 5 6 7 8; do
+  if [ ! -f "$bench/seed$seed/manifest.jsonl" ]; then
+    target/release/examples/make_bench "$bench/seed$seed" --seed "$seed" > /dev/null
+  fi
+done
+# Two splits at a time: the machine this runs on has two cores.
+for pair in "1 2" "3 4" "5 6" "7 8"; do
+  for seed in $pair; do
+    target/release/examples/bench_score "$bench/seed$seed" \
+      --json "$bench/results/$tag-$seed.jsonl" > "$bench/results/$tag-$seed.txt" &
+  done
+  wait
+done
+python3 - "$bench/results" "$tag" "$base" <<'PY'
+import json, sys
+results, tag, base = sys.argv[1], sys.argv[2], sys.argv[3]
+touching = {"animals", "arches", "meanders", "spikes"}
+role = {1: "dev", 2: "validation", 3: "dev", 4: "held out", 5: "dev", 6: "dev", 7: "dev", 8: "dev"}
+def load(run, seed):
+    with open(f"{results}/{run}-{seed}.jsonl") as f:
+        return {d["name"]: d for d in map(json.loads, f)}
+for seed in range(1, 9):
+    now = load(tag, seed)
+    exact = [d for d in now.values() if d["exact"]]
+    line = sum(1 for d in exact if d["family"] not in touching)
+    line_all = sum(1 for d in now.values() if d["family"] not in touching)
+    report = (f"seed {seed} ({role[seed]}): {len(exact)}/{len(now)}, line art {line}/{line_all}, "
+              f"touching parts {len(exact) - line}/{len(now) - line_all}")
+    if base:
+        before = load(base, seed)
+        gained = sorted(n for n in now if now[n]["exact"] and not before[n]["exact"])
+        lost = sorted(n for n in now if not now[n]["exact"] and before[n]["exact"])
+        report += f"  +{len(gained)} -{len(lost)}"
+        # Only development splits' drawings are named: the held-out ones are not to be looked at.
+        if role[seed] == "dev":
+            report += f"  gained {gained} lost {lost}"
+    print(report)
+PY
