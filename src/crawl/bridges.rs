@@ -1499,11 +1499,10 @@ fn drop_t_ends_across_through_corners(
             if !t_end.attached {
                 return false;
             }
+            // The bridge's path, through its corner if it has one.
             let from = end_at[&free].at;
-            let path = match via {
-                Some(corner) => [Line::new(from, corner), Line::new(corner, t_end.at)],
-                None => [Line::new(from, t_end.at), Line::new(t_end.at, t_end.at)],
-            };
+            let knee = via.unwrap_or(t_end.at);
+            let path = [Line::new(from, knee), Line::new(knee, t_end.at)];
             corners.iter().any(|&(corner, stroke)| {
                 corner.distance(t_end.at) <= near
                     || (stroke == t_end.stroke
@@ -2998,6 +2997,19 @@ mod tests {
         )
     }
 
+    /// Asserts that a bridge's drawn points (a spacing of 1 px) run along [`gap_in_a_circle`]'s
+    /// circle for at least 20 of them, each within 0.05 px of it.
+    fn assert_along_the_circle(points: &[Point]) {
+        assert!(points.len() >= 20, "{points:?}");
+        for p in points {
+            let off_circle = (p.to_vec2().hypot() - 30.0).abs();
+            assert!(
+                off_circle < 0.05,
+                "{p:?} is {off_circle:.2} px off the circle"
+            );
+        }
+    }
+
     /// A free end of stroke `stroke` at `at`, its vertex numbered as its stroke, going `way`
     /// (normalised) with the stroke's `bend` carried into it.
     fn free_end(stroke: usize, at: Point, way: Vec2, bend: f64) -> BridgeableEnd {
@@ -3397,14 +3409,7 @@ mod tests {
         let corner = Point::new(30.0 * cos, 30.0 * sin);
         end.curving = 10f64.to_radians();
         let leg = arc_to_corner(&end, corner, 1.0);
-        assert!(leg.len() >= 20, "{leg:?}");
-        for p in &leg {
-            let off_circle = (p.to_vec2().hypot() - 30.0).abs();
-            assert!(
-                off_circle < 0.05,
-                "{p:?} is {off_circle:.2} px off the circle"
-            );
-        }
+        assert_along_the_circle(&leg);
         // A stroke curving by 2° (a straight line's jitter), or curving away from the corner:
         // a straight leg.
         end.curving = 2f64.to_radians();
@@ -3427,14 +3432,7 @@ mod tests {
         scallop.curving = 10f64.to_radians();
         cusp.outward = Some(cusp.at.to_vec2().normalize());
         let path = straight_bridge_path(&scallop, &cusp, 1.0);
-        assert!(path.len() >= 20, "{path:?}");
-        for p in &path {
-            let off_circle = (p.to_vec2().hypot() - 30.0).abs();
-            assert!(
-                off_circle < 0.05,
-                "{p:?} is {off_circle:.2} px off the circle"
-            );
-        }
+        assert_along_the_circle(&path);
         // The same the other way round, from the cusp to the scallop.
         let back = straight_bridge_path(&cusp, &scallop, 1.0);
         assert_eq!(back.iter().rev().copied().collect::<Vec<_>>(), path);

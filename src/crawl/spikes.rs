@@ -367,13 +367,7 @@ impl SegmentGrid {
         inner.peek().is_some()
             && inner.all(|p| {
                 self.grid.around(p).any(|&(i, s)| {
-                    let curve = &curves[i];
-                    let n = curve.points.len();
-                    !joined.contains(&i)
-                        && distance_to_segment(
-                            p,
-                            Line::new(curve.points[s], curve.points[(s + 1) % n]),
-                        ) <= reach
+                    !joined.contains(&i) && distance_to_segment(p, segment(curves, i, s)) <= reach
                 })
             })
     }
@@ -390,19 +384,24 @@ impl SegmentGrid {
     ) -> Option<usize> {
         let mut best: Option<(f64, usize)> = None;
         for &(i, s) in self.grid.around(point) {
-            let curve = &curves[i];
-            let n = curve.points.len();
-            let (a, b) = (curve.points[s], curve.points[(s + 1) % n]);
-            if i == own && (a.distance(point) <= reach || b.distance(point) <= reach) {
+            let line = segment(curves, i, s);
+            if i == own && (line.p0.distance(point) <= reach || line.p1.distance(point) <= reach) {
                 continue;
             }
-            let d = distance_to_segment(point, Line::new(a, b));
+            let d = distance_to_segment(point, line);
             if d <= reach && best.is_none_or(|(bd, bi)| d < bd || (d == bd && i < bi)) {
                 best = Some((d, i));
             }
         }
         best.map(|(_, i)| i)
     }
+}
+
+/// Segment `s` of curve `i`: from its point `s` to the next (round to the first on a closed
+/// curve), as [`SegmentGrid`] buckets them.
+fn segment(curves: &[Polyline], i: usize, s: usize) -> Line {
+    let points = &curves[i].points;
+    Line::new(points[s], points[(s + 1) % points.len()])
 }
 
 /// The median width of ink across the curves' points.

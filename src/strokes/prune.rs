@@ -125,10 +125,8 @@ impl SkeletonGraph {
                 let branch = &self.branches[b];
                 let (a, z) = branch.nodes.expect("node branches have nodes");
                 let far = if at_start { z } else { a };
-                if far == node
-                    || self.degree(far) != 1
-                    || polyline_length(&branch.points, false) >= spurs.max_length
-                {
+                let length = polyline_length(&branch.points, false);
+                if far == node || self.degree(far) != 1 || length >= spurs.max_length {
                     continue;
                 }
                 let direction = self.leaving_direction(b, at_start, direction_scale);
@@ -151,13 +149,10 @@ impl SkeletonGraph {
                 // Comparing over the spur's length alone lost three on seed 4, one on seed 1 and
                 // one on validation; over half the direction scale a balloon's string took the
                 // balloon's short piece past the knot as a corner.
-                let length = polyline_length(&branch.points, false);
-                let score = if length < direction_scale {
-                    score_over(direction_scale)
-                        .min(score_over(length.max(DIRECTION_SCALE_FLOOR_PX)))
-                } else {
-                    score_over(direction_scale)
-                };
+                let mut score = score_over(direction_scale);
+                if length < direction_scale {
+                    score = score.min(score_over(length.max(DIRECTION_SCALE_FLOOR_PX)));
+                }
                 if score < CORNER_SPUR_MAX_COSINE && best.is_none_or(|(s, _)| score < s) {
                     best = Some((score, k));
                 }
