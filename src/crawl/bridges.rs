@@ -197,6 +197,13 @@ const CORNER_COST_FACTOR: f64 = 1.5;
 /// than two edges" before a chain closes).
 const MIN_SELF_BRIDGED_SAMPLES: usize = MIN_LOOP_SAMPLES;
 
+/// The longest bridge between two strokes' ends the matching can take: the widest loop-closing
+/// gap allowed with the largest typical gap, rim to rim, plus the pen width thinning took off the
+/// two ends.
+pub(super) fn longest_gap_bridge(spacing: f64, stroke_width: f64) -> f64 {
+    LOOP_GAP_MAX_IN_TYPICAL_GAPS * TYPICAL_GAP_MAX_IN_SPACINGS * spacing + stroke_width
+}
+
 pub(super) fn match_gap_bridges(
     vertices: &StrokeVertices,
     ends: &[BridgeableEnd],
@@ -205,8 +212,7 @@ pub(super) fn match_gap_bridges(
 ) -> GapBridges {
     // No bridge can be longer than the widest loop-closing gap allowed with the largest typical
     // gap, rim to rim, plus the pen width thinning took off the two ends.
-    let reach = LOOP_GAP_MAX_IN_TYPICAL_GAPS * TYPICAL_GAP_MAX_IN_SPACINGS * spacing
-        + stroke_width
+    let reach = longest_gap_bridge(spacing, stroke_width)
         + 2.0
             * vertices
                 .dot_radius

@@ -12,6 +12,7 @@ mod bands;
 mod bridges;
 mod closure;
 pub mod contacts;
+mod hairpins;
 pub mod neighbours;
 pub mod outline_gaps;
 pub mod reconstruct;

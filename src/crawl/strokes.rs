@@ -18,13 +18,14 @@ use kurbo::{Line, ParamCurveNearest, Point, Vec2};
 use super::algorithm::Chain;
 use super::bands::splice_lone_bands;
 use super::bridges::{
-    match_gap_bridges, BridgeableEnd, GapBridges, BRIDGE_MAX_IN_TYPICAL_GAPS,
+    longest_gap_bridge, match_gap_bridges, BridgeableEnd, GapBridges, BRIDGE_MAX_IN_TYPICAL_GAPS,
     MAX_STRAIGHT_TURN_DEGREES,
 };
 use super::closure::{
     close_across_side_by_side_ends, close_curves_ending_on_themselves,
     join_holes_touching_their_outline, thread_loops_through_shared_necks,
 };
+use super::hairpins::open_facing_hairpins;
 use super::reconstruct::{self, canonical_orientation, Reconstruction};
 use super::through::angle;
 use super::ReconstructError;
@@ -451,6 +452,12 @@ pub fn connect_strokes(
     spacing: f64,
     stroke_width: f64,
 ) -> (Vec<Polyline>, f64) {
+    let strokes: &[Stroke] = &open_facing_hairpins(
+        strokes,
+        longest_gap_bridge(spacing, stroke_width),
+        spacing,
+        stroke_width,
+    );
     let vertices = StrokeVertices::new(strokes, spacing);
     let positions = &vertices.positions;
     let StrokeGraph { mut edges, ends } =
@@ -1974,6 +1981,39 @@ mod tests {
                     .iter()
                     .any(|curve| runs_between(curve, (x, 0.0), (x, 92.0), 2.0)),
                 "no side from ({x}, 0) to ({x}, 92): {curves:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn the_sides_of_a_neck_whose_broken_pieces_touch_go_on_across_the_gap() {
+        // A neck 6 px wide (a pen of 3 px) between two flaring outlines, both sides broken by a
+        // 12 px gap at the same height, where each side's pieces end with their rounded tips
+        // touching across the neck: the skeleton joins the two pieces above the gap in one
+        // hairpin and the two below in another, tip facing tip. Each side goes on across its
+        // own gap; neither hairpin is a U-turn.
+        let mut above = line((-20.0, -20.0), (0.0, 0.0));
+        above.extend(line((0.0, 4.0), (0.0, 50.0)));
+        above.push((3.0, 53.0));
+        above.extend(line((6.0, 50.0), (6.0, 0.0)));
+        above.extend(line((10.0, -4.0), (26.0, -20.0)));
+        let mut below = line((-20.0, 120.0), (0.0, 100.0));
+        below.extend(line((0.0, 96.0), (0.0, 62.0)));
+        below.push((3.0, 59.0));
+        below.extend(line((6.0, 62.0), (6.0, 100.0)));
+        below.extend(line((10.0, 104.0), (26.0, 120.0)));
+        let strokes = vec![open(&above), open(&below)];
+        let curves = connect(&strokes, Method::Strokes, 4.0, 3.0);
+        assert_eq!(curves.len(), 2, "{curves:?}");
+        for (from, to) in [
+            ((-20.0, -20.0), (-20.0, 120.0)),
+            ((26.0, -20.0), (26.0, 120.0)),
+        ] {
+            assert!(
+                curves
+                    .iter()
+                    .any(|curve| runs_between(curve, from, to, 2.0)),
+                "no side from {from:?} to {to:?}: {curves:?}"
             );
         }
     }

@@ -377,7 +377,7 @@ fn find_corners(
 
 /// The unit direction from vertex `k` to the point `arm` along the stroke (ahead or back), and
 /// that point, if the stroke reaches that far (round a closed stroke, at most halfway).
-fn arm_direction(
+pub(super) fn arm_direction(
     point: &impl Fn(usize) -> Point,
     k: usize,
     n: usize,
