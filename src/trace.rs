@@ -10,6 +10,7 @@ use image::{DynamicImage, GrayImage};
 
 use crate::crawl::contacts::{
     drop_covered_open_curves, drop_redundant_arcs, join_loops_to_open_curves, join_touching_loops,
+    splice_loops_into_bridges,
 };
 use crate::crawl::outline_gaps::close_outline_gaps;
 use crate::crawl::spikes::{fold_collapsed_spikes, join_free_ends_to_spike_tips};
@@ -185,6 +186,7 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
         drop_redundant_arcs(&mut curves, stroke_width);
         drop_covered_open_curves(&mut curves, stroke_width);
         join_loops_to_open_curves(&mut curves, &raster.mask, stroke_width);
+        splice_loops_into_bridges(&mut curves, &raster.mask, stroke_width, typical_gap);
         close_outline_gaps(&mut curves, stroke_width, typical_gap);
         restore_tips(&mut curves, &raster.mask, stroke_width);
     }
