@@ -12,7 +12,7 @@ use std::collections::{BTreeMap, HashSet};
 
 use kurbo::{Point, Vec2};
 
-use super::through::{angle, arm_direction, ARM_IN_SPACINGS};
+use super::through::{angle, arm_direction, vertex_neighbours, ARM_IN_SPACINGS};
 use crate::geometry::grid::PointGrid;
 use crate::geometry::polyline::Polyline;
 use crate::strokes::{Stroke, StrokeEnd};
@@ -121,12 +121,8 @@ fn find_hairpins(strokes: &[Stroke], arm: f64, stroke_width: f64) -> Vec<Hairpin
             let Some([back_half, back_end, ahead_half, ahead_end]) = measured[k] else {
                 continue;
             };
-            let (before, after) = if closed {
-                ((k + n - 1) % n, (k + 1) % n)
-            } else if k == 0 || k + 1 == n {
+            let Some((before, after)) = vertex_neighbours(k, n, closed) else {
                 continue;
-            } else {
-                (k - 1, k + 1)
             };
             // The sharpest of a run: ties go to the first.
             let turn = tip_turn(k);

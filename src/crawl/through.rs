@@ -345,12 +345,8 @@ fn find_corners(
             let Some((turn, arms, arm_ends)) = measured[k] else {
                 continue;
             };
-            let (before, after) = if closed {
-                ((k + n - 1) % n, (k + 1) % n)
-            } else if k == 0 || k + 1 == n {
+            let Some((before, after)) = vertex_neighbours(k, n, closed) else {
                 continue;
-            } else {
-                (k - 1, k + 1)
             };
             // The sharpest of a run: ties go to the first.
             let beside_junction = at_junction(point(k));
@@ -373,6 +369,18 @@ fn find_corners(
         }
     }
     corners
+}
+
+/// The vertices before and after vertex `k` of a stroke of `n` vertices: round a closed stroke,
+/// none at an open stroke's two ends.
+pub(super) fn vertex_neighbours(k: usize, n: usize, closed: bool) -> Option<(usize, usize)> {
+    if closed {
+        Some(((k + n - 1) % n, (k + 1) % n))
+    } else if k == 0 || k + 1 == n {
+        None
+    } else {
+        Some((k - 1, k + 1))
+    }
 }
 
 /// The unit direction from vertex `k` to the point `arm` along the stroke (ahead or back), and
