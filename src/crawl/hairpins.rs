@@ -17,9 +17,9 @@ use crate::geometry::grid::PointGrid;
 use crate::geometry::polyline::Polyline;
 use crate::strokes::{Stroke, StrokeEnd};
 
-/// A hairpin's arms run back side by side: the stroke turns by at least this much (degrees)
-/// between its arms measured [`ARM_IN_SPACINGS`] from the tip, as at the end of a band
-/// ([`super::tips`]).
+/// A hairpin's arms run back side by side: the last halves of its two arms (from half of
+/// [`ARM_IN_SPACINGS`] out from the tip to all of it) turn by at least this much (degrees) from
+/// one into the other, as a band's end does ([`super::tips`]).
 const MIN_TURN_DEGREES: f64 = 140.0;
 
 /// ... and they lie at most this far apart there (pen widths): the sides of a neck or two
