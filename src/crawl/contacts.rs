@@ -12,13 +12,13 @@
 //! between two pen lifts), the bridge goes round it. The paper (Parakkat & Muthuganapathy 2016)
 //! closes each cycle on its own; these rules are ours.
 
-use kurbo::{ParamCurveNearest, Point, Rect, Vec2};
+use kurbo::{Point, Rect, Vec2};
 
 use std::collections::HashMap;
 
 use super::remove_marked;
 use crate::geometry::grid::PointGrid;
-use crate::geometry::polyline::{nearest_point_index, Polyline};
+use crate::geometry::polyline::{distance_to_segment, nearest_point_index, Polyline};
 use crate::raster::bitmap::Bitmap;
 
 /// Two closed curves touch where a point of one lies within this much (pen widths) of a point of
@@ -277,10 +277,18 @@ pub fn splice_loops_into_bridges(
     }
     small.sort_by(|&a, &b| lengths[a].total_cmp(&lengths[b]).then(a.cmp(&b)));
     let min_cosine = BRIDGED_LOOP_MAX_TURN_DEGREES.to_radians().cos();
+    // Each curve's box, once (a splice grows only the curve it goes into).
+    let mut boxes: Vec<Rect> = curves
+        .iter()
+        .map(|curve| match curve.points.first() {
+            Some(_) => bounds(&curve.points),
+            None => Rect::ZERO,
+        })
+        .collect();
     let mut joined = vec![false; curves.len()];
     for &loop_index in &small {
         let loop_points = &curves[loop_index].points;
-        let area = bounds(loop_points).inflate(typical_gap, typical_gap);
+        let area = boxes[loop_index].inflate(typical_gap, typical_gap);
         // The curve points at the loop where the way it goes at `at` leads to the loop's
         // nearest point.
         let points_at_loop = |at: Point, way: Vec2| {
@@ -298,7 +306,7 @@ pub fn splice_loops_into_bridges(
             if other == loop_index || joined[other] || lengths[other] <= lengths[loop_index] {
                 continue;
             }
-            if bounds(&curve.points).intersect(area).area() <= 0.0 {
+            if boxes[other].intersect(area).area() <= 0.0 {
                 continue;
             }
             for run in bridge_runs(curve, mask) {
@@ -313,7 +321,7 @@ pub fn splice_loops_into_bridges(
                 for k in run {
                     let line = kurbo::Line::new(curve.points[k % n], curve.points[(k + 1) % n]);
                     for (at, &q) in loop_points.iter().enumerate() {
-                        let distance = line.nearest(q, 1e-9).distance_sq.sqrt();
+                        let distance = distance_to_segment(q, line);
                         if distance <= typical_gap && nearest.is_none_or(|best| distance < best.3) {
                             nearest = Some((other, k % n, at, distance));
                         }
@@ -324,11 +332,8 @@ pub fn splice_loops_into_bridges(
         let Some((other, k, at_loop, _)) = nearest else {
             continue;
         };
-        let excursion: Vec<Point> = loop_points[at_loop..]
-            .iter()
-            .chain(&loop_points[..=at_loop])
-            .copied()
-            .collect();
+        let excursion = once_round(loop_points, at_loop);
+        boxes[other] = boxes[other].union(boxes[loop_index]);
         curves[other].points.splice(k + 1..k + 1, excursion);
         joined[loop_index] = true;
     }
@@ -420,15 +425,15 @@ fn nearest_contact(
 /// The larger curve runs from its contact point across to the smaller curve's, once round the
 /// smaller curve, and back.
 fn splice_at_contact(curves: &mut [Polyline], small: usize, contact: &Contact) {
-    let loop_points = &curves[small].points;
-    let mut excursion: Vec<Point> = loop_points[contact.at_small..]
-        .iter()
-        .chain(&loop_points[..=contact.at_small])
-        .copied()
-        .collect();
+    let mut excursion = once_round(&curves[small].points, contact.at_small);
     let outline = &mut curves[contact.large].points;
     excursion.push(outline[contact.at_large]);
     outline.splice(contact.at_large + 1..contact.at_large + 1, excursion);
+}
+
+/// A closed curve's points once round from point `at` back to it.
+fn once_round(points: &[Point], at: usize) -> Vec<Point> {
+    points[at..].iter().chain(&points[..=at]).copied().collect()
 }
 
 /// Whether the straight line from `a` to `b` runs on ink all the way.

@@ -127,10 +127,18 @@ fn end_direction(points: &[Point], reach: f64, skip: f64) -> Option<(Vec2, f64)>
 /// (a scanned "N"'s apex lost to its cap's hook); the piece measured from `skip` in, or required
 /// to be one or one and a half pen widths long: fewer gained.
 fn corner_near_end(points: &[Point], reach: f64, skip: f64) -> Option<Point> {
+    first_corner(points, reach, skip, skip + reach).map(|(j, _)| points[j])
+}
+
+/// The first vertex `j` of the stroke (`points` ordered from an end inwards) at least `skip` and
+/// at most `within` along it from the end where the piece from the end and the stroke's chord
+/// over `reach` beyond the vertex turn by more than [`MAX_EXTRAPOLATED_TURN`]: a corner, and how
+/// far along the stroke it lies.
+fn first_corner(points: &[Point], reach: f64, skip: f64, within: f64) -> Option<(usize, f64)> {
     let mut along = 0.0;
     for j in 1..points.len().saturating_sub(1) {
         along += points[j - 1].distance(points[j]);
-        if along > skip + reach {
+        if along > within {
             return None;
         }
         let piece = points[0] - points[j];
@@ -140,7 +148,7 @@ fn corner_near_end(points: &[Point], reach: f64, skip: f64) -> Option<Point> {
             && beyond.hypot() > 0.0
             && signed_turn(beyond, piece).abs() > MAX_EXTRAPOLATED_TURN
         {
-            return Some(points[j]);
+            return Some((j, along));
         }
     }
     None
@@ -151,8 +159,7 @@ fn corner_near_end(points: &[Point], reach: f64, skip: f64) -> Option<Point> {
 const CURVING_REACH_IN_SPACINGS: f64 = 2.0;
 
 /// [`stroke_curving`], but never across a corner of the stroke: where the stroke turns a corner
-/// within the two reaches it measures (the piece from the end and the chord over `reach` beyond a
-/// vertex turn by more than [`MAX_EXTRAPOLATED_TURN`], as in [`corner_near_end`]), the turn
+/// within the two reaches it measures ([`first_corner`], as for [`corner_near_end`]), the turn
 /// between the two halves of the piece from the end to that corner.
 ///
 /// DECISION: (stop 47) measured across a corner, the curving is the corner's turn, not the
@@ -165,27 +172,15 @@ const CURVING_REACH_IN_SPACINGS: f64 = 2.0;
 /// seed 4 +2, validation unchanged. A shortest piece of a quarter or half a reach measured the
 /// same as none.
 fn curving_since_corner(points: &[Point], reach: f64) -> f64 {
-    let mut along = 0.0;
-    for j in 1..points.len().saturating_sub(1) {
-        along += points[j - 1].distance(points[j]);
-        if along > 2.0 * reach {
-            break;
-        }
-        let piece = points[0] - points[j];
-        let beyond = points[j] - point_at_length(&points[j..], reach);
-        if piece.hypot() > 0.0
-            && beyond.hypot() > 0.0
-            && signed_turn(beyond, piece).abs() > MAX_EXTRAPOLATED_TURN
-        {
-            let middle = point_at_length(points, along / 2.0);
-            let (previous, chord) = (middle - points[j], points[0] - middle);
-            if previous.hypot() == 0.0 || chord.hypot() == 0.0 {
-                return 0.0;
-            }
-            return signed_turn(previous, chord);
-        }
+    let Some((j, along)) = first_corner(points, reach, 0.0, 2.0 * reach) else {
+        return stroke_curving(points, reach);
+    };
+    let middle = point_at_length(points, along / 2.0);
+    let (previous, chord) = (middle - points[j], points[0] - middle);
+    if previous.hypot() == 0.0 || chord.hypot() == 0.0 {
+        return 0.0;
     }
-    stroke_curving(points, reach)
+    signed_turn(previous, chord)
 }
 
 /// The turn (radians, counter-clockwise positive, in the pen's direction towards the end)
