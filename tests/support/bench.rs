@@ -389,7 +389,7 @@ fn curve_problem(
             detail: format!("{name}: its only near path {output} is curve {by_truth}'s"),
         },
         Some(MatchProblem::TooFar { output, distance }) if covered >= COVERED_SHARE => {
-            let along = true_curve.directed(&indexed[output]);
+            let (along, worst) = true_curve.farthest(&indexed[output]);
             let off = indexed[output].directed(&true_curve);
             // A loop left open at a gap wider than the tolerance, or an open curve sealed by a
             // long closing segment, is a closedness failure, not a distance one: the path and
@@ -418,7 +418,8 @@ fn curve_problem(
                 kind,
                 detail: format!(
                     "{name}: nearest path {output} at {distance:.1} px \
-                     (curve to path {along:.1}, path to curve {off:.1})"
+                     (curve to path {along:.1} at {:.0},{:.0}; path to curve {off:.1})",
+                    worst.x, worst.y
                 ),
             }
         }

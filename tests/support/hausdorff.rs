@@ -92,7 +92,18 @@ impl Indexed {
 
     /// The largest distance from a point of `self` to `other` (directed Hausdorff distance).
     pub fn directed(&self, other: &Indexed) -> f64 {
+        self.farthest(other).0
+    }
+
+    /// The directed Hausdorff distance and the point of `self` where it is reached (the first
+    /// sample when every point lies on `other`).
+    pub fn farthest(&self, other: &Indexed) -> (f64, Point) {
         let mut largest: f64 = 0.0;
+        let mut where_largest = self
+            .samples
+            .first()
+            .copied()
+            .unwrap_or(Point::new(0.0, 0.0));
         // Neighbouring samples are usually nearest to the same run: try it first.
         let mut hint = 0;
         for &point in &self.samples {
@@ -113,9 +124,11 @@ impl Indexed {
                     }
                 }
             }
-            largest = largest.max(best);
+            if best > largest {
+                (largest, where_largest) = (best, point);
+            }
         }
-        largest
+        (largest, where_largest)
     }
 
     /// Distance from `point` to the nearest segment of run `run`.
