@@ -182,6 +182,7 @@ pub fn join_loops_to_open_curves(curves: &mut Vec<Polyline>, mask: &Bitmap, stro
                         Contact {
                             large,
                             at_large,
+                            on_large: p,
                             at_small,
                             distance,
                         },
@@ -232,7 +233,9 @@ fn direction_at(curve: &Polyline, k: usize) -> Vec2 {
 #[derive(Clone, Copy)]
 struct Contact {
     large: usize,
+    /// The larger curve's segment (its first point) where the contact is, and the point on it.
     at_large: usize,
+    on_large: Point,
     at_small: usize,
     distance: f64,
 }
@@ -393,8 +396,10 @@ fn points_by_position(points: &[Point], reach: f64) -> PointGrid<usize> {
     grid
 }
 
-/// The nearest pair of points of `small` and `large` (whose points `grid` holds,
-/// [`points_by_position`]) within `reach` of each other with ink all the way between them.
+/// The nearest point of `small` to the segments of `large` (whose points `grid` holds,
+/// [`points_by_position`]) within `reach` with ink all the way between them. Measured to the
+/// segments, not their points: two curves sampled a spacing apart that pass a junction side by
+/// side can be nearer than any two of their points (a foot's loop under the next leg).
 fn nearest_contact(
     curves: &[Polyline],
     small: usize,
@@ -403,19 +408,30 @@ fn nearest_contact(
     mask: &Bitmap,
     reach: f64,
 ) -> Option<Contact> {
+    use kurbo::{ParamCurve, ParamCurveNearest};
+    let outline = &curves[large].points;
+    let n = outline.len();
     let mut nearest: Option<Contact> = None;
     for (at_small, &q) in curves[small].points.iter().enumerate() {
-        for &at_large in grid.around(q) {
-            let p = curves[large].points[at_large];
-            let distance = p.distance(q);
-            let nearer = nearest.as_ref().is_none_or(|best| distance < best.distance);
-            if distance <= reach && nearer && ink_between(mask, p, q) {
-                nearest = Some(Contact {
-                    large,
-                    at_large,
-                    at_small,
-                    distance,
-                });
+        for &k in grid.around(q) {
+            // The larger curve's nearest point may lie between two of its points: sampled a
+            // spacing apart, two curves passing a junction can be nearer than any two points.
+            for segment_start in [(k + n - 1) % n, k] {
+                let segment =
+                    kurbo::Line::new(outline[segment_start], outline[(segment_start + 1) % n]);
+                let hit = segment.nearest(q, 1e-9);
+                let p = segment.eval(hit.t);
+                let distance = hit.distance_sq.sqrt();
+                let nearer = nearest.as_ref().is_none_or(|best| distance < best.distance);
+                if distance <= reach && nearer && ink_between(mask, p, q) {
+                    nearest = Some(Contact {
+                        large,
+                        at_large: segment_start,
+                        on_large: p,
+                        at_small,
+                        distance,
+                    });
+                }
             }
         }
     }
@@ -423,12 +439,23 @@ fn nearest_contact(
 }
 
 /// The larger curve runs from its contact point across to the smaller curve's, once round the
-/// smaller curve, and back.
+/// smaller curve, and back. A contact between two of the larger curve's points becomes a point
+/// of its own.
 fn splice_at_contact(curves: &mut [Polyline], small: usize, contact: &Contact) {
     let mut excursion = once_round(&curves[small].points, contact.at_small);
     let outline = &mut curves[contact.large].points;
-    excursion.push(outline[contact.at_large]);
-    outline.splice(contact.at_large + 1..contact.at_large + 1, excursion);
+    let next = (contact.at_large + 1) % outline.len();
+    // At the segment's end the contact is the next point's.
+    let at = if contact.on_large == outline[next] {
+        next
+    } else {
+        contact.at_large
+    };
+    if contact.on_large != outline[at] {
+        excursion.insert(0, contact.on_large);
+    }
+    excursion.push(contact.on_large);
+    outline.splice(at + 1..at + 1, excursion);
 }
 
 /// A closed curve's points once round from point `at` back to it.
@@ -709,9 +736,50 @@ mod tests {
         join_touching_loops(&mut curves, &mask, PEN);
         assert_eq!(curves.len(), 1, "one outline");
         assert!(curves[0].closed);
-        // Round the leg (its points and the first again) and back to the body's point.
-        assert_eq!(curves[0].points.len(), points + 2);
+        // Across to the leg, round it (its points and the first again) and back: at least two
+        // points more than the two curves had.
+        assert!(curves[0].points.len() >= points + 2);
         assert!(curves[0].points.iter().any(|p| (p.y - 100.0).abs() < 1e-9));
+    }
+
+    #[test]
+    fn a_loop_touching_the_outline_between_two_of_its_points_is_spliced_into_it() {
+        // Sampled a spacing apart, the body's points along its lower side lie 16 px apart, at
+        // x = 42 and 58; the leg's top (3 px below that side, inks running into each other) has
+        // its corners at x = 47.5 and 52.5, more than two pen widths from both. The contact is
+        // between the body's points.
+        let mut mask = Bitmap::new(120, 120);
+        let corners = [(10.0, 10.0), (106.0, 10.0), (106.0, 50.0), (10.0, 50.0)];
+        for k in 0..corners.len() {
+            draw_line(&mut mask, corners[k], corners[(k + 1) % 4], PEN);
+        }
+        let lower_side = [106.0, 90.0, 74.0, 58.0, 42.0, 26.0, 10.0].map(|x| Point::new(x, 50.0));
+        let body = Polyline::new(
+            [Point::new(10.0, 10.0), Point::new(106.0, 10.0)]
+                .into_iter()
+                .chain(lower_side)
+                .collect(),
+            true,
+        );
+        let leg = outline(
+            &mut mask,
+            &[(47.5, 53.0), (52.5, 53.0), (52.5, 100.0), (47.5, 100.0)],
+        );
+        let nearest_points = body
+            .points
+            .iter()
+            .flat_map(|p| leg.points.iter().map(move |q| p.distance(*q)))
+            .fold(f64::INFINITY, f64::min);
+        assert!(nearest_points > 2.0 * PEN, "{nearest_points}");
+        let mut curves = vec![body, leg];
+        join_touching_loops(&mut curves, &mask, PEN);
+        assert_eq!(curves.len(), 1, "one outline");
+        // The outline leaves its lower side at the contact, 3 px above the leg's corner.
+        let on_side = curves[0]
+            .points
+            .iter()
+            .any(|p| (p.y - 50.0).abs() < 1e-9 && (p.x - 47.5).abs() < 1e-9);
+        assert!(on_side, "{:?}", curves[0].points);
     }
 
     /// A closed outline through `pieces` (each a polyline of corners, sampled every 2 px as the
