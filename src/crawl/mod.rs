@@ -12,6 +12,7 @@ mod bands;
 mod bridges;
 mod closure;
 pub mod contacts;
+pub mod crossings;
 mod hairpins;
 pub mod neighbours;
 pub mod outline_gaps;

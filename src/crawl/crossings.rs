@@ -1,0 +1,288 @@
+//! Two open curves that turn a corner at the same point, where each went on into the other's
+//! line: a "K" whose stem broke at its junction comes out of the crawl as the upper stem turning
+//! into the leg and the arm turning into the lower stem. At a junction the branches are paired
+//! straightest first (good continuation, Wertheimer 1923; the crawl's own rule at junctions of
+//! the skeleton), so the four arms are paired again that way: the stem goes through, the arm and
+//! the leg meet in their corner. The paper (Parakkat & Muthuganapathy 2016) crawls each curve on
+//! its own; this rule is ours.
+
+use kurbo::{Point, Vec2};
+
+use std::collections::BTreeMap;
+
+use crate::geometry::grid::PointGrid;
+use crate::geometry::polyline::{lines_meet, signed_turn, Polyline};
+
+/// Two curves meet at a point where a vertex of one lies within this much (pen widths) of a
+/// vertex of the other: both passed the same junction of the ink.
+const MEET_IN_PEN_WIDTHS: f64 = 1.0;
+
+/// An arm's direction is measured over this much of the curve from the meeting point (pen
+/// widths), past the junction's blur, as [`super::tips`] measures a tip's arms.
+const ARM_IN_PEN_WIDTHS: f64 = 5.0;
+
+/// DECISION: (stop 48) two arms go straight on through a junction where they turn by at most
+/// this much (degrees): a stem broken at the junction, drawn with a little jitter.
+const STRAIGHT_MAX_TURN_DEGREES: f64 = 20.0;
+
+/// DECISION: (stop 48) the other two arms meet in a corner of at least this turn (degrees): a
+/// "K"'s arm and leg turn by 100° and more; two lines side by side that a bridge took across
+/// from one to the other, and back, turn by less (41° where a thin pair of lines crossed).
+const OTHER_PAIR_MIN_TURN_DEGREES: f64 = 60.0;
+
+/// DECISION: (stop 48) each curve turns a corner at the meeting point by at least this much
+/// (degrees): a curve that goes straight through a junction is paired well already (an "X").
+const CORNER_MIN_TURN_DEGREES: f64 = 30.0;
+
+/// Pairs again the arms of every two open curves of `curves` that turn a corner at the same
+/// point, straightest first, where one pair of arms then goes straight through
+/// ([`STRAIGHT_MAX_TURN_DEGREES`]) and both curves turned a corner there
+/// ([`CORNER_MIN_TURN_DEGREES`]).
+pub fn pair_arms_straightest_first(curves: &mut [Polyline], stroke_width: f64) {
+    if stroke_width <= 0.0 {
+        return;
+    }
+    let reach = MEET_IN_PEN_WIDTHS * stroke_width;
+    let arm = ARM_IN_PEN_WIDTHS * stroke_width;
+    let open: Vec<usize> = (0..curves.len()).filter(|&c| !curves[c].closed).collect();
+    let mut interior = PointGrid::new(reach.max(1.0));
+    for &c in &open {
+        let n = curves[c].points.len();
+        for k in 1..n.saturating_sub(1) {
+            interior.insert(curves[c].points[k], (c, k));
+        }
+    }
+    // The nearest meeting of each two curves, by the pair (in order, for byte-identical output).
+    let mut meetings: BTreeMap<(usize, usize), (f64, usize, usize)> = BTreeMap::new();
+    for &p in &open {
+        let n = curves[p].points.len();
+        for i in 1..n.saturating_sub(1) {
+            let here = curves[p].points[i];
+            for &(q, j) in interior.around(here) {
+                let distance = here.distance(curves[q].points[j]);
+                if q <= p || distance > reach {
+                    continue;
+                }
+                let nearest = meetings.entry((p, q)).or_insert((distance, i, j));
+                if distance < nearest.0 {
+                    *nearest = (distance, i, j);
+                }
+            }
+        }
+    }
+    // A curve paired again is done with: its points are no longer where the meetings found them.
+    let mut paired_again = vec![false; curves.len()];
+    for ((p, q), (_, i, j)) in meetings {
+        if paired_again[p] || paired_again[q] {
+            continue;
+        }
+        if let Some((first, second)) = repaired(&curves[p].points, i, &curves[q].points, j, arm) {
+            curves[p].points = first;
+            curves[q].points = second;
+            paired_again[p] = true;
+            paired_again[q] = true;
+        }
+    }
+}
+
+/// The first point of `points` at least `length` along the curve from `points[k]` (forwards or
+/// backwards); none where the curve is shorter.
+fn point_along(points: &[Point], k: usize, length: f64, forwards: bool) -> Option<Point> {
+    let mut walked = 0.0;
+    let mut at = k;
+    while walked < length {
+        let next = if forwards {
+            (at + 1 < points.len()).then_some(at + 1)?
+        } else {
+            at.checked_sub(1)?
+        };
+        walked += points[at].distance(points[next]);
+        at = next;
+    }
+    Some(points[at])
+}
+
+/// The unit direction of an arm of the curve from `points[k]` (forwards or backwards): from the
+/// point [`CORNER_LINE_FROM`] of `length` along it to the point `length` along it, past the
+/// junction's blur; none where the curve is shorter.
+fn arm_direction(points: &[Point], k: usize, length: f64, forwards: bool) -> Option<Vec2> {
+    let way = point_along(points, k, length, forwards)?
+        - point_along(points, k, CORNER_LINE_FROM * length, forwards)?;
+    let size = way.hypot();
+    (size > 0.0).then(|| way / size)
+}
+
+/// Where the lines of two arms meet (each through its points [`CORNER_LINE_FROM`] and `arm`
+/// along the curve from the meeting point), if within `arm` of `near`: the corner the two arms
+/// make, which the junction's blur of ink rounded.
+fn corner_of(
+    x: (&[Point], usize, bool),
+    y: (&[Point], usize, bool),
+    arm: f64,
+    near: Point,
+) -> Option<Point> {
+    let line = |(points, k, forwards): (&[Point], usize, bool)| {
+        Some((
+            point_along(points, k, arm, forwards)?,
+            point_along(points, k, CORNER_LINE_FROM * arm, forwards)?,
+        ))
+    };
+    let ((x_far, x_near), (y_far, y_near)) = (line(x)?, line(y)?);
+    let corner = lines_meet(x_far, x_near, y_far, y_near, MIN_CROSSING_SINE)?;
+    (corner.distance(near) <= arm).then_some(corner)
+}
+
+/// An arm's line for [`corner_of`] starts this share of the arm from the meeting point.
+const CORNER_LINE_FROM: f64 = 0.5;
+
+/// Lines closer to parallel than this (the sine of their angle) do not meet in a corner.
+const MIN_CROSSING_SINE: f64 = 0.1;
+
+/// How much (degrees) a curve turns going in along arm `x` and out along arm `y`, both
+/// directions pointing away from the meeting point.
+fn turn_between(x: Vec2, y: Vec2) -> f64 {
+    signed_turn(-x, y).abs().to_degrees()
+}
+
+/// The two curves paired again at the meeting point (`a[i]`, `b[j]`), or none where the
+/// straightest pair of arms is one they already have, or no pair goes straight through.
+fn repaired(
+    a: &[Point],
+    i: usize,
+    b: &[Point],
+    j: usize,
+    arm: f64,
+) -> Option<(Vec<Point>, Vec<Point>)> {
+    // The four arms, pointing away from the meeting point: a's start and end, b's start and end.
+    let arms = [
+        arm_direction(a, i, arm, false)?,
+        arm_direction(a, i, arm, true)?,
+        arm_direction(b, j, arm, false)?,
+        arm_direction(b, j, arm, true)?,
+    ];
+    let turn = |x: usize, y: usize| turn_between(arms[x], arms[y]);
+    if turn(0, 1) < CORNER_MIN_TURN_DEGREES || turn(2, 3) < CORNER_MIN_TURN_DEGREES {
+        return None;
+    }
+    // The other two pairings: a's start with b's start (and the ends together), or with b's end.
+    let starts_together = turn(0, 2).min(turn(1, 3));
+    let crossed = turn(0, 3).min(turn(1, 2));
+    let straightest = starts_together.min(crossed);
+    // The other two arms of the new pairing meet in their corner.
+    let other = if starts_together <= crossed {
+        turn(0, 2).max(turn(1, 3))
+    } else {
+        turn(0, 3).max(turn(1, 2))
+    };
+    if straightest > STRAIGHT_MAX_TURN_DEGREES || other < OTHER_PAIR_MIN_TURN_DEGREES {
+        return None;
+    }
+    let (a_start, a_end) = (&a[..i], &a[i + 1..]);
+    let (b_start, b_end) = (&b[..j], &b[j + 1..]);
+    let joined = |x: &[Point], at: Point, y: &[Point]| -> Vec<Point> {
+        x.iter()
+            .copied()
+            .chain([at])
+            .chain(y.iter().copied())
+            .collect()
+    };
+    let reversed = |x: &[Point]| -> Vec<Point> { x.iter().rev().copied().collect() };
+    let meeting = a[i].midpoint(b[j]);
+    // The straight pair goes through the meeting point; the other pair meets in the corner of
+    // its arms' lines, where there is one near.
+    let corner = |x: (&[Point], usize, bool), y: (&[Point], usize, bool)| {
+        corner_of(x, y, arm, meeting).unwrap_or(meeting)
+    };
+    Some(if starts_together <= crossed {
+        // a's start, then b's start backwards; b's end backwards, then a's end.
+        let at_starts = if turn(0, 2) <= turn(1, 3) {
+            meeting
+        } else {
+            corner((a, i, false), (b, j, false))
+        };
+        let at_ends = if turn(0, 2) <= turn(1, 3) {
+            corner((b, j, true), (a, i, true))
+        } else {
+            meeting
+        };
+        (
+            joined(a_start, at_starts, &reversed(b_start)),
+            joined(&reversed(b_end), at_ends, a_end),
+        )
+    } else {
+        // a's start, then b's end; b's start, then a's end.
+        let at_first = if turn(0, 3) <= turn(1, 2) {
+            meeting
+        } else {
+            corner((a, i, false), (b, j, true))
+        };
+        let at_second = if turn(0, 3) <= turn(1, 2) {
+            corner((b, j, false), (a, i, true))
+        } else {
+            meeting
+        };
+        (
+            joined(a_start, at_first, b_end),
+            joined(b_start, at_second, a_end),
+        )
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn line(points: &[(f64, f64)]) -> Polyline {
+        Polyline::new(
+            points.iter().map(|&(x, y)| Point::new(x, y)).collect(),
+            false,
+        )
+        .resample(2.0)
+    }
+
+    #[test]
+    fn a_k_whose_curves_turned_at_the_junction_gets_its_stem_back() {
+        // The stem from (0, 0) down to (0, 60); the arm from (30, 0) and the leg to (30, 60),
+        // meeting the stem at (0, 30). The crawl paired the upper stem with the leg and the arm
+        // with the lower stem.
+        let mut curves = vec![
+            line(&[(0.0, 0.0), (0.0, 30.0), (30.0, 60.0)]),
+            line(&[(30.0, 0.0), (0.5, 30.5), (0.0, 60.0)]),
+        ];
+        pair_arms_straightest_first(&mut curves, 3.0);
+        let stem = curves
+            .iter()
+            .find(|c| c.points.iter().all(|p| p.x.abs() < 1.0))
+            .expect("a straight stem");
+        assert!(stem.points.iter().any(|p| p.y < 1.0) && stem.points.iter().any(|p| p.y > 59.0));
+        let corner = curves.iter().find(|c| !std::ptr::eq(*c, stem)).unwrap();
+        let ends = [corner.points[0], corner.points[corner.points.len() - 1]];
+        assert!(ends.iter().all(|p| p.x > 29.0), "{ends:?}");
+    }
+
+    #[test]
+    fn two_corners_touching_with_no_straight_way_through_stay_as_they_are() {
+        // An "L" whose corner touches a "<"'s: no two of the four arms go on straight.
+        let mut curves = vec![
+            line(&[(0.0, 0.0), (0.0, 30.0), (30.0, 30.0)]),
+            line(&[(30.0, 0.0), (0.5, 30.5), (30.0, 60.0)]),
+        ];
+        let before = curves.clone();
+        pair_arms_straightest_first(&mut curves, 3.0);
+        assert_eq!(curves, before);
+    }
+
+    #[test]
+    fn a_straight_way_through_whose_other_arms_make_no_corner_is_left_alone() {
+        // Two lines crossing at a shared point, each turning there: one line straight through
+        // would leave the other two arms turning by only 34°, no corner (two lines side by side
+        // that a bridge took across and back).
+        let mut curves = vec![
+            line(&[(0.0, 0.0), (30.0, 30.0), (60.0, 30.0)]),
+            line(&[(0.0, 50.0), (30.5, 30.0), (60.0, 60.0)]),
+        ];
+        let before = curves.clone();
+        pair_arms_straightest_first(&mut curves, 3.0);
+        assert_eq!(curves, before);
+    }
+}
