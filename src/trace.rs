@@ -12,7 +12,7 @@ use crate::crawl::contacts::{
     drop_covered_open_curves, drop_redundant_arcs, join_loops_to_open_curves, join_touching_loops,
     splice_loops_into_bridges,
 };
-use crate::crawl::crossings::pair_arms_straightest_first;
+use crate::crawl::crossings::{go_on_through_corners, pair_arms_straightest_first};
 use crate::crawl::outline_gaps::close_outline_gaps;
 use crate::crawl::spikes::{fold_collapsed_spikes, join_free_ends_to_spike_tips};
 use crate::crawl::strokes::{connect_measured, Connected, Method};
@@ -190,6 +190,7 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
         splice_loops_into_bridges(&mut curves, &raster.mask, stroke_width, typical_gap);
         close_outline_gaps(&mut curves, stroke_width, typical_gap);
         pair_arms_straightest_first(&mut curves, stroke_width);
+        go_on_through_corners(&mut curves, typical_gap, stroke_width);
         restore_tips(&mut curves, &raster.mask, stroke_width);
     }
     watch.lap(&mut report, "reconstruct");

@@ -1,15 +1,19 @@
-//! Two open curves that turn a corner at the same point, where each went on into the other's
-//! line: a "K" whose stem broke at its junction comes out of the crawl as the upper stem turning
-//! into the leg and the arm turning into the lower stem. At a junction the branches are paired
-//! straightest first (good continuation, Wertheimer 1923; the crawl's own rule at junctions of
-//! the skeleton), so the four arms are paired again that way: the stem goes through, the arm and
-//! the leg meet in their corner. The paper (Parakkat & Muthuganapathy 2016) crawls each curve on
-//! its own; this rule is ours.
+//! Curves paired again at junctions the crawl went round the wrong way: two open curves that
+//! turn a corner at the same point, where each went on into the other's line (a "K" whose stem
+//! broke at its junction comes out as the upper stem turning into the leg and the arm turning
+//! into the lower stem), and an open curve whose end points at another's corner across a gap (an
+//! "A" whose left leg broke where the bar meets it: the upper leg turned into the bar, the lower
+//! leg stayed alone). At a junction the branches are paired straightest first (good
+//! continuation, Wertheimer 1923; the crawl's own rule at the skeleton's junctions), so the stem
+//! goes through and the arm and the leg meet in their corner, and the leg goes on through the
+//! bar's corner. The paper (Parakkat & Muthuganapathy 2016) crawls each curve on its own; these
+//! rules are ours.
 
 use kurbo::{Point, Vec2};
 
 use std::collections::BTreeMap;
 
+use super::bridges::BRIDGE_MAX_IN_TYPICAL_GAPS;
 use crate::geometry::grid::PointGrid;
 use crate::geometry::polyline::{lines_meet, signed_turn, Polyline};
 
@@ -83,6 +87,107 @@ pub fn pair_arms_straightest_first(curves: &mut [Polyline], stroke_width: f64) {
             paired_again[q] = true;
         }
     }
+}
+
+/// DECISION: (stop 48) an open curve's end points at another curve's corner within this much
+/// (degrees): its line runs on into the corner.
+const END_AT_CORNER_MAX_DEGREES: f64 = 15.0;
+
+/// Sends every open curve whose end points at a corner of another open curve, across a gap as
+/// long as the longest bridge (`typical_gap` times [`BRIDGE_MAX_IN_TYPICAL_GAPS`]), on through the corner into the arm that goes on along its line
+/// ([`STRAIGHT_MAX_TURN_DEGREES`]), where the other arm turns off it
+/// ([`CORNER_MIN_TURN_DEGREES`]): an "A" whose left leg broke where the bar meets it came
+/// out as the upper leg turning into the bar, and the lower leg alone. The corner's other arm
+/// then ends at the corner.
+pub fn go_on_through_corners(curves: &mut [Polyline], typical_gap: f64, stroke_width: f64) {
+    let reach = BRIDGE_MAX_IN_TYPICAL_GAPS * typical_gap;
+    if stroke_width <= 0.0 || reach <= 0.0 {
+        return;
+    }
+    let arm = ARM_IN_PEN_WIDTHS * stroke_width;
+    let mut interior = PointGrid::new(reach.max(1.0));
+    for (c, curve) in curves.iter().enumerate() {
+        let n = curve.points.len();
+        if !curve.closed {
+            for k in 1..n.saturating_sub(1) {
+                interior.insert(curve.points[k], (c, k));
+            }
+        }
+    }
+    let mut changed = vec![false; curves.len()];
+    for q in 0..curves.len() {
+        for at_start in [true, false] {
+            if changed[q] || curves[q].closed || curves[q].points.len() < 2 {
+                continue;
+            }
+            let points = &curves[q].points;
+            let end = if at_start { 0 } else { points.len() - 1 };
+            let Some(inward) = arm_direction(points, end, arm, at_start) else {
+                continue;
+            };
+            let (e, ahead) = (points[end], -inward);
+            // The nearest corner straight ahead of the end.
+            let mut best: Option<(f64, usize, usize, bool)> = None;
+            for &(p, k) in interior.around(e) {
+                // A curve changed already is done with: its points are no longer where the grid
+                // has them.
+                if p == q || changed[p] {
+                    continue;
+                }
+                let gap = curves[p].points[k] - e;
+                let distance = gap.hypot();
+                if distance > reach || distance == 0.0 {
+                    continue;
+                }
+                if signed_turn(ahead, gap).abs().to_degrees() > END_AT_CORNER_MAX_DEGREES {
+                    continue;
+                }
+                let Some(on) = corner_arm_going_on(&curves[p].points, k, ahead, arm) else {
+                    continue;
+                };
+                if best.is_none_or(|(d, ..)| distance < d) {
+                    best = Some((distance, p, k, on));
+                }
+            }
+            let Some((_, p, k, forwards)) = best else {
+                continue;
+            };
+            let corner = curves[p].points.clone();
+            let (going_on, staying): (Vec<Point>, Vec<Point>) = if forwards {
+                (corner[k..].to_vec(), corner[..=k].to_vec())
+            } else {
+                (
+                    corner[..=k].iter().rev().copied().collect(),
+                    corner[k..].to_vec(),
+                )
+            };
+            let mut through = curves[q].points.clone();
+            if at_start {
+                through.reverse();
+            }
+            through.extend(going_on);
+            curves[q].points = through;
+            curves[p].points = staying;
+            changed[p] = true;
+            changed[q] = true;
+        }
+    }
+}
+
+/// At a corner of `points` (vertex `k`), the arm that goes on along direction `ahead` (true for
+/// the arm after `k`), where the other arm turns off that line.
+fn corner_arm_going_on(points: &[Point], k: usize, ahead: Vec2, arm: f64) -> Option<bool> {
+    let before = arm_direction(points, k, arm, false)?;
+    let after = arm_direction(points, k, arm, true)?;
+    let along = |x: Vec2| signed_turn(ahead, x).abs().to_degrees();
+    let (on, off) = if along(after) <= along(before) {
+        (after, before)
+    } else {
+        (before, after)
+    };
+    // The arm going off turns from the line through the corner by its own angle.
+    (along(on) <= STRAIGHT_MAX_TURN_DEGREES && turn_between(-ahead, off) >= CORNER_MIN_TURN_DEGREES)
+        .then_some(on == after)
 }
 
 /// The first point of `points` at least `length` along the curve from `points[k]` (forwards or
@@ -283,6 +388,49 @@ mod tests {
         ];
         let before = curves.clone();
         pair_arms_straightest_first(&mut curves, 3.0);
+        assert_eq!(curves, before);
+    }
+
+    #[test]
+    fn a_leg_broken_where_the_bar_meets_it_goes_on_through_the_bar_s_corner() {
+        // An "A"'s left leg from (0, 100) up to the apex (30, 0), broken 10 px below the bar,
+        // which meets it at (15, 50): the crawl turned the upper leg into the bar, and left the
+        // lower leg on its own, its end pointing up the leg at the corner.
+        let leg = |t: f64| (30.0 * (1.0 - t), 100.0 * t);
+        // A third line ends beside the upper leg, after the leg's curve has changed.
+        let mut curves = vec![
+            line(&[leg(0.0), leg(0.5), (45.0, 50.0)]),
+            line(&[leg(1.0), leg(0.6)]),
+            line(&[(60.0, 30.0), (24.0, 30.0)]),
+        ];
+        go_on_through_corners(&mut curves, 6.0, 3.0);
+        assert_eq!(curves[2], line(&[(60.0, 30.0), (24.0, 30.0)]));
+        let whole_leg = curves
+            .iter()
+            .find(|c| c.points.iter().any(|p| p.y < 1.0) && c.points.iter().any(|p| p.y > 99.0))
+            .expect("the leg in one curve");
+        assert!(
+            whole_leg.points.iter().all(|p| p.x < 31.0),
+            "{:?}",
+            whole_leg.points
+        );
+        let bar = &curves[0];
+        assert!(
+            bar.points.iter().all(|p| (p.y - 50.0).abs() < 1e-9),
+            "{:?}",
+            bar.points
+        );
+    }
+
+    #[test]
+    fn an_end_pointing_at_a_corner_across_its_arms_stays_where_it_is() {
+        // An "L" whose corner (0, 50) a line from (-30, 80) points at, at 45° to both arms.
+        let mut curves = vec![
+            line(&[(0.0, 0.0), (0.0, 50.0), (50.0, 50.0)]),
+            line(&[(-30.0, 80.0), (-8.0, 58.0)]),
+        ];
+        let before = curves.clone();
+        go_on_through_corners(&mut curves, 6.0, 3.0);
         assert_eq!(curves, before);
     }
 }
