@@ -191,6 +191,8 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
         close_outline_gaps(&mut curves, stroke_width, typical_gap);
         pair_arms_straightest_first(&mut curves, stroke_width);
         go_on_through_corners(&mut curves, typical_gap, stroke_width);
+        // The stages since the first check can leave a piece beside a path that covers it.
+        drop_covered_open_curves(&mut curves, stroke_width);
         restore_tips(&mut curves, &raster.mask, stroke_width);
     }
     watch.lap(&mut report, "reconstruct");

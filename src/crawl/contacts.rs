@@ -646,19 +646,31 @@ fn outline_without_redundant_arc(
 // one of two lines side by side (the parallel lines are 1.5–2 pen widths apart).
 const COVERED_IN_PEN_WIDTHS: f64 = 1.0;
 
+/// DECISION: (stop 48) an open curve at most [`STUB_MAX_IN_PEN_WIDTHS`] long adds no ink of its
+/// own where all of it lies within this much (pen widths) of other curves: a piece of a foot's or
+/// a meander's outline that the outline went past a little further off, its own ink merged with
+/// the outline's. Two lines side by side (1.5–2 pen widths apart) are longer. Measured on the
+/// benchmark (scripts/bench-splits.sh): development +2 −0 (a thin meander, a thin letter page's
+/// stub, the latter only with the check run again after the last post-crawl stage), validation
+/// +1 (touching parts), seed 4 the same; up to 8 pen widths the same.
+const COVERED_STUB_IN_PEN_WIDTHS: f64 = 1.5;
+/// See [`COVERED_STUB_IN_PEN_WIDTHS`].
+const STUB_MAX_IN_PEN_WIDTHS: f64 = 5.0;
+
 /// Drops every open curve of `curves` that lies all along within [`COVERED_IN_PEN_WIDTHS`] of
-/// the other curves (sampled every [`ARC_STEP_PX`]), in order: of two curves that cover each
+/// the other curves ([`COVERED_STUB_IN_PEN_WIDTHS`] for a stub) (sampled every [`ARC_STEP_PX`]), in order: of two curves that cover each
 /// other, the first goes and the second stays.
 pub fn drop_covered_open_curves(curves: &mut Vec<Polyline>, stroke_width: f64) {
     if stroke_width <= 0.0 || !curves.iter().any(|c| !c.closed) {
         return;
     }
     let cover = COVERED_IN_PEN_WIDTHS * stroke_width;
+    let stub_cover = COVERED_STUB_IN_PEN_WIDTHS * stroke_width;
     let samples: Vec<Vec<Point>> = curves
         .iter()
         .map(|curve| curve.resample(ARC_STEP_PX).points)
         .collect();
-    let mut near = PointGrid::new(cover.max(1.0));
+    let mut near = PointGrid::new(stub_cover.max(1.0));
     for (c, points) in samples.iter().enumerate() {
         for &p in points {
             near.insert(p, (c, p));
@@ -669,6 +681,11 @@ pub fn drop_covered_open_curves(curves: &mut Vec<Polyline>, stroke_width: f64) {
         if curves[o].closed || curves[o].points.len() < 2 {
             continue;
         }
+        let cover = if curves[o].length() <= STUB_MAX_IN_PEN_WIDTHS * stroke_width {
+            stub_cover
+        } else {
+            cover
+        };
         let covered = samples[o].iter().all(|&p| {
             near.around(p)
                 .any(|&(c, q)| c != o && !removed[c] && q.distance(p) <= cover)
@@ -1031,5 +1048,20 @@ mod tests {
         ];
         drop_covered_open_curves(&mut curves, PEN);
         assert_eq!(curves, vec![line(40.0, 10.0, 90.0), line(46.0, 10.0, 90.0)]);
+    }
+
+    #[test]
+    fn a_stub_beside_an_outline_is_dropped_where_a_line_as_far_beside_it_stays() {
+        // Pen 3: a stub of 12 px (four pen widths) and a line of 80 px, each 4 px (1.33 pen
+        // widths) beside a line: the stub is a piece of the outline the crawl went past, the
+        // long one a line of its own beside it.
+        let line = |y: f64, from: f64, to: f64| polyline(&[(from, y), (to, y)], false);
+        let mut curves = vec![
+            line(44.0, 30.0, 42.0),
+            line(40.0, 10.0, 90.0),
+            line(36.0, 10.0, 90.0),
+        ];
+        drop_covered_open_curves(&mut curves, PEN);
+        assert_eq!(curves, vec![line(40.0, 10.0, 90.0), line(36.0, 10.0, 90.0)]);
     }
 }
