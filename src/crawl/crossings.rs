@@ -194,21 +194,30 @@ fn corner_arm_going_on(points: &[Point], k: usize, ahead: Vec2, arm: f64) -> Opt
         .then_some(on == after)
 }
 
-/// The first point of `points` at least `length` along the curve from `points[k]` (forwards or
-/// backwards); none where the curve is shorter.
+/// The point `length` along the curve from `points[k]` (forwards or backwards); none where the
+/// curve is shorter.
 fn point_along(points: &[Point], k: usize, length: f64, forwards: bool) -> Option<Point> {
     let mut walked = 0.0;
     let mut at = k;
-    while walked < length {
+    loop {
         let next = if forwards {
             (at + 1 < points.len()).then_some(at + 1)?
         } else {
             at.checked_sub(1)?
         };
-        walked += points[at].distance(points[next]);
+        let step = points[at].distance(points[next]);
+        if walked + step >= length {
+            // Within this segment: a long one (a bridge) holds both of an arm's points.
+            let t = if step > 0.0 {
+                (length - walked) / step
+            } else {
+                0.0
+            };
+            return Some(points[at].lerp(points[next], t));
+        }
+        walked += step;
         at = next;
     }
-    Some(points[at])
 }
 
 /// The unit direction of an arm of the curve from `points[k]` (forwards or backwards): from the
@@ -367,6 +376,25 @@ mod tests {
         let corner = curves.iter().find(|c| !std::ptr::eq(*c, stem)).unwrap();
         let ends = [corner.points[0], corner.points[corner.points.len() - 1]];
         assert!(ends.iter().all(|p| p.x > 29.0), "{ends:?}");
+    }
+
+    #[test]
+    fn an_arm_whose_last_stretch_is_one_long_bridge_still_has_a_direction() {
+        // The "K" again, the upper stem's last 18 px into the junction one bridge: both of the
+        // arm's measuring points (7.5 and 15 px back) lie on it.
+        let mut upper_stem_then_leg: Vec<Point> =
+            (0..=6).map(|k| Point::new(0.0, 2.0 * k as f64)).collect();
+        upper_stem_then_leg.extend(line(&[(0.0, 30.0), (30.0, 60.0)]).points);
+        let mut curves = vec![
+            Polyline::new(upper_stem_then_leg, false),
+            line(&[(30.0, 0.0), (0.5, 30.5), (0.0, 60.0)]),
+        ];
+        pair_arms_straightest_first(&mut curves, 3.0);
+        let stem = curves
+            .iter()
+            .find(|c| c.points.iter().all(|p| p.x.abs() < 1.0))
+            .expect("a straight stem");
+        assert!(stem.points.iter().any(|p| p.y < 1.0) && stem.points.iter().any(|p| p.y > 59.0));
     }
 
     #[test]
