@@ -98,11 +98,11 @@ pub fn pair_arms_straightest_first(curves: &mut [Polyline], stroke_width: f64) {
 const END_AT_CORNER_MAX_DEGREES: f64 = 15.0;
 
 /// Sends every open curve whose end points at a corner of another open curve, across a gap as
-/// long as the longest bridge (`typical_gap` times [`BRIDGE_MAX_IN_TYPICAL_GAPS`]), on through the corner into the arm that goes on along its line
-/// ([`STRAIGHT_MAX_TURN_DEGREES`]), where the other arm turns off it
-/// ([`CORNER_MIN_TURN_DEGREES`]): an "A" whose left leg broke where the bar meets it came
-/// out as the upper leg turning into the bar, and the lower leg alone. The corner's other arm
-/// then ends at the corner.
+/// long as the longest bridge (`typical_gap` times [`BRIDGE_MAX_IN_TYPICAL_GAPS`]), on through
+/// the corner into the arm that goes on along its line ([`STRAIGHT_MAX_TURN_DEGREES`]), where
+/// the other arm turns off it ([`CORNER_MIN_TURN_DEGREES`]): an "A" whose left leg broke where
+/// the bar meets it came out as the upper leg turning into the bar, and the lower leg alone.
+/// The corner's other arm then ends at the corner. Each curve changes at most once.
 pub fn go_on_through_corners(curves: &mut [Polyline], typical_gap: f64, stroke_width: f64) {
     let reach = BRIDGE_MAX_IN_TYPICAL_GAPS * typical_gap;
     if stroke_width <= 0.0 || reach <= 0.0 {
