@@ -53,13 +53,7 @@ pub fn pair_arms_straightest_first(curves: &mut [Polyline], stroke_width: f64) {
     let reach = MEET_IN_PEN_WIDTHS * stroke_width;
     let arm = ARM_IN_PEN_WIDTHS * stroke_width;
     let open: Vec<usize> = (0..curves.len()).filter(|&c| !curves[c].closed).collect();
-    let mut interior = PointGrid::new(reach.max(1.0));
-    for &c in &open {
-        let n = curves[c].points.len();
-        for k in 1..n.saturating_sub(1) {
-            interior.insert(curves[c].points[k], (c, k));
-        }
-    }
+    let interior = open_interior_points(curves, reach);
     // The nearest meeting of each two curves, by the pair (in order, for byte-identical output).
     let mut meetings: BTreeMap<(usize, usize), (f64, usize, usize)> = BTreeMap::new();
     for &p in &open {
@@ -93,6 +87,20 @@ pub fn pair_arms_straightest_first(curves: &mut [Polyline], stroke_width: f64) {
     }
 }
 
+/// The interior points (all but the ends) of the open curves of `curves`, as (curve, point)
+/// by position, in cells `cell` wide (at least a pixel).
+fn open_interior_points(curves: &[Polyline], cell: f64) -> PointGrid<(usize, usize)> {
+    let mut interior = PointGrid::new(cell.max(1.0));
+    for (c, curve) in curves.iter().enumerate() {
+        if !curve.closed {
+            for k in 1..curve.points.len().saturating_sub(1) {
+                interior.insert(curve.points[k], (c, k));
+            }
+        }
+    }
+    interior
+}
+
 /// DECISION: (stop 48) an open curve's end points at another curve's corner within this much
 /// (degrees): its line runs on into the corner.
 const END_AT_CORNER_MAX_DEGREES: f64 = 15.0;
@@ -109,15 +117,7 @@ pub fn go_on_through_corners(curves: &mut [Polyline], typical_gap: f64, stroke_w
         return;
     }
     let arm = ARM_IN_PEN_WIDTHS * stroke_width;
-    let mut interior = PointGrid::new(reach.max(1.0));
-    for (c, curve) in curves.iter().enumerate() {
-        let n = curve.points.len();
-        if !curve.closed {
-            for k in 1..n.saturating_sub(1) {
-                interior.insert(curve.points[k], (c, k));
-            }
-        }
-    }
+    let interior = open_interior_points(curves, reach);
     let mut changed = vec![false; curves.len()];
     for q in 0..curves.len() {
         for at_start in [true, false] {
@@ -283,16 +283,19 @@ fn repaired(
         return None;
     }
     // The other two pairings: a's start with b's start (and the ends together), or with b's end.
-    let starts_together = turn(0, 2).min(turn(1, 3));
-    let crossed = turn(0, 3).min(turn(1, 2));
-    let straightest = starts_together.min(crossed);
-    // The other two arms of the new pairing meet in their corner.
-    let other = if starts_together <= crossed {
-        turn(0, 2).max(turn(1, 3))
+    // Each pairs arm 0 (a's start) with one of b's arms and arm 1 (a's end) with the other.
+    let starts_together = turn(0, 2).min(turn(1, 3)) <= turn(0, 3).min(turn(1, 2));
+    let pairs = if starts_together {
+        [(0, 2), (1, 3)]
     } else {
-        turn(0, 3).max(turn(1, 2))
+        [(0, 3), (1, 2)]
     };
-    if straightest > STRAIGHT_MAX_TURN_DEGREES || other < OTHER_PAIR_MIN_TURN_DEGREES {
+    let pair_turn = |pair: usize| turn(pairs[pair].0, pairs[pair].1);
+    // One pair goes straight through; the other two arms meet in their corner.
+    let straight = if pair_turn(0) <= pair_turn(1) { 0 } else { 1 };
+    if pair_turn(straight) > STRAIGHT_MAX_TURN_DEGREES
+        || pair_turn(1 - straight) < OTHER_PAIR_MIN_TURN_DEGREES
+    {
         return None;
     }
     let (a_start, a_end) = (&a[..i], &a[i + 1..]);
@@ -306,44 +309,32 @@ fn repaired(
     };
     let reversed = |x: &[Point]| -> Vec<Point> { x.iter().rev().copied().collect() };
     let meeting = a[i].midpoint(b[j]);
-    // The straight pair goes through the meeting point; the other pair meets in the corner of
-    // its arms' lines, where there is one near.
-    let corner = |x: (&[Point], usize, bool), y: (&[Point], usize, bool)| {
-        corner_of(x, y, arm, meeting).unwrap_or(meeting)
+    let arm_of = |x: usize| match x {
+        0 => (a, i, false),
+        1 => (a, i, true),
+        2 => (b, j, false),
+        _ => (b, j, true),
     };
-    Some(if starts_together <= crossed {
-        // a's start, then b's start backwards; b's end backwards, then a's end.
-        let at_starts = if turn(0, 2) <= turn(1, 3) {
-            meeting
-        } else {
-            corner((a, i, false), (b, j, false))
-        };
-        let at_ends = if turn(0, 2) <= turn(1, 3) {
-            corner((b, j, true), (a, i, true))
-        } else {
-            meeting
-        };
-        (
-            joined(a_start, at_starts, &reversed(b_start)),
-            joined(&reversed(b_end), at_ends, a_end),
-        )
+    // The straight pair goes through the meeting point; the other pair meets in the corner of
+    // its arms' lines, where there is one near (read from the arm the new curve comes in by).
+    let at = |pair: usize| {
+        if pair == straight {
+            return meeting;
+        }
+        let (x, y) = pairs[pair];
+        let (from, to) = if pair == 0 { (x, y) } else { (y, x) };
+        corner_of(arm_of(from), arm_of(to), arm, meeting).unwrap_or(meeting)
+    };
+    // a's start, then b's arm paired with it; b's other arm, then a's end.
+    let (after_a_start, before_a_end) = if starts_together {
+        (reversed(b_start), reversed(b_end))
     } else {
-        // a's start, then b's end; b's start, then a's end.
-        let at_first = if turn(0, 3) <= turn(1, 2) {
-            meeting
-        } else {
-            corner((a, i, false), (b, j, true))
-        };
-        let at_second = if turn(0, 3) <= turn(1, 2) {
-            corner((b, j, false), (a, i, true))
-        } else {
-            meeting
-        };
-        (
-            joined(a_start, at_first, b_end),
-            joined(b_start, at_second, a_end),
-        )
-    })
+        (b_end.to_vec(), b_start.to_vec())
+    };
+    Some((
+        joined(a_start, at(0), &after_a_start),
+        joined(&before_a_end, at(1), a_end),
+    ))
 }
 
 #[cfg(test)]
