@@ -8,6 +8,7 @@ use std::time::{Duration, Instant};
 
 use image::{DynamicImage, GrayImage};
 
+use crate::crawl::band_gaps::join_band_tips_across_gaps;
 use crate::crawl::contacts::{
     drop_covered_open_curves, drop_redundant_arcs, join_loops_to_open_curves, join_touching_loops,
     splice_loops_into_bridges,
@@ -184,6 +185,7 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
         fold_collapsed_spikes(&mut curves, &raster.mask, stroke_width);
         join_free_ends_to_spike_tips(&mut curves, &raster.mask, stroke_width);
         join_touching_loops(&mut curves, &raster.mask, stroke_width);
+        join_band_tips_across_gaps(&mut curves, stroke_width);
         drop_redundant_arcs(&mut curves, stroke_width);
         drop_covered_open_curves(&mut curves, stroke_width);
         join_loops_to_open_curves(&mut curves, &raster.mask, stroke_width);

@@ -16,11 +16,11 @@ use crate::geometry::Polyline;
 /// gap in [`crate::strokes`]). Measured on the benchmark: dev 327 → 329, val 314 → 315 (three
 /// fingers and spikes cut off at their base), no drawing lost; a dash one pen wide (a sun's ray
 /// drawn short of the sun) is no band and is never spliced.
-const BASE_GAP_MAX_IN_PEN_WIDTHS: f64 = 5.0;
+pub(super) const BASE_GAP_MAX_IN_PEN_WIDTHS: f64 = 5.0;
 
 /// The end must point at the outline: the line from it to its foot on the outline turns at most
 /// this much (degrees) from the band's direction there. A protrusion stands on its outline.
-const BASE_MAX_TURN_DEGREES: f64 = 45.0;
+pub(super) const BASE_MAX_TURN_DEGREES: f64 = 45.0;
 
 /// The band's direction at an end is measured this many pen widths back along it.
 const DIRECTION_REACH_IN_PEN_WIDTHS: f64 = 2.0;
@@ -32,7 +32,7 @@ pub(super) struct Foot {
     pub(super) segment: usize,
     t: f64,
     pub(super) point: Point,
-    distance: f64,
+    pub(super) distance: f64,
 }
 
 /// Splices every lone band (`curves[k]` with `is_band[k]`, an open curve) that stands on a closed
@@ -195,12 +195,26 @@ impl SegmentGrid {
 
     /// The nearest point of a closed curve's segment to `p` within `reach`.
     pub(super) fn nearest(&self, p: Point, curves: &[Polyline], reach: f64) -> Option<Foot> {
+        self.nearest_except(p, curves, reach, usize::MAX)
+    }
+
+    /// [`Self::nearest`], on any closed curve but curve `except`.
+    pub(super) fn nearest_except(
+        &self,
+        p: Point,
+        curves: &[Polyline],
+        reach: f64,
+        except: usize,
+    ) -> Option<Foot> {
         let key = self.cell_of(p);
         let span = (reach / self.cell).ceil() as i64;
         let mut best: Option<Foot> = None;
         for x in key.0 - span..=key.0 + span {
             for y in key.1 - span..=key.1 + span {
                 for &(c, s) in self.cells.get(&(x, y)).into_iter().flatten() {
+                    if c == except {
+                        continue;
+                    }
                     let curve = &curves[c];
                     let n = curve.points.len();
                     let line = Line::new(curve.points[s], curve.points[(s + 1) % n]);

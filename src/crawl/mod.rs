@@ -8,6 +8,7 @@
 //! the crawl on sampled pen strokes, with bridges across the gaps between their free ends.
 
 pub mod algorithm;
+pub mod band_gaps;
 mod bands;
 mod bridges;
 mod closure;
