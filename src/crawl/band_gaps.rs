@@ -180,7 +180,11 @@ mod tests {
         let mut points = vec![Point::new(20.0, 0.0)];
         let steps = (neck_end - 20.0) as usize / 2;
         points.extend((1..=steps).map(|k| Point::new(20.0 + 2.0 * k as f64, 0.0)));
-        points.extend((0..steps).rev().map(|k| Point::new(20.0 + 2.0 * k as f64, 0.0)));
+        points.extend(
+            (0..steps)
+                .rev()
+                .map(|k| Point::new(20.0 + 2.0 * k as f64, 0.0)),
+        );
         points.extend((1..36).map(|k| {
             let angle = f64::from(k) * 10f64.to_radians();
             Point::new(20.0 * angle.cos(), 20.0 * angle.sin())
@@ -208,7 +212,10 @@ mod tests {
         let outline = &curves[0];
         assert!(outline.closed);
         // Once round the other ball: its far side is on the outline.
-        assert!(outline.points.iter().any(|p| p.distance(Point::new(86.0, 0.0)) < 1e-9));
+        assert!(outline
+            .points
+            .iter()
+            .any(|p| p.distance(Point::new(86.0, 0.0)) < 1e-9));
     }
 
     #[test]
