@@ -8,10 +8,11 @@
 //! U-turn"; issue 8, the dumbbells' necks with gaps on both sides at the same height). The paper
 //! (Parakkat & Muthuganapathy 2016) closes each cycle on its own; this rule is ours.
 
-use kurbo::{Point, Vec2};
+use kurbo::Vec2;
 
 use super::bands::{Foot, SegmentGrid, BASE_GAP_MAX_IN_PEN_WIDTHS, BASE_MAX_TURN_DEGREES};
 use super::remove_marked;
+use crate::geometry::polyline::point_along;
 use crate::geometry::Polyline;
 
 /// A U-turn's two arms are read this many pen widths back from its tip.
@@ -116,8 +117,8 @@ fn u_turn_tips(k: usize, curve: &Polyline, stroke_width: f64) -> Vec<Tip> {
     // (vertex, how far out, axis) of each vertex that is a U-turn's tip.
     let candidates: Vec<(usize, f64, Vec2)> = (0..n)
         .filter_map(|v| {
-            let before = point_round(points, v, arm, false)?;
-            let after = point_round(points, v, arm, true)?;
+            let before = point_along(points, true, v, arm, false)?;
+            let after = point_along(points, true, v, arm, true)?;
             let middle = before.midpoint(after);
             let out = points[v] - middle;
             let (apart, reach) = (before.distance(after), out.hypot());
@@ -154,31 +155,10 @@ fn u_turn_tips(k: usize, curve: &Polyline, stroke_width: f64) -> Vec<Tip> {
     tips
 }
 
-/// The point `length` along the closed curve `points` from vertex `k`, forwards or backwards;
-/// none on a curve shorter than that.
-fn point_round(points: &[Point], k: usize, length: f64, forwards: bool) -> Option<Point> {
-    let n = points.len();
-    let mut walked = 0.0;
-    let mut at = k;
-    for _ in 0..n {
-        let next = if forwards {
-            (at + 1) % n
-        } else {
-            (at + n - 1) % n
-        };
-        let step = points[at].distance(points[next]);
-        if walked + step >= length && step > 0.0 {
-            return Some(points[at].lerp(points[next], (length - walked) / step));
-        }
-        walked += step;
-        at = next;
-    }
-    None
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use kurbo::Point;
 
     /// A ball of radius 20 round (0, 0) with a neck traced out to (`neck_end`, 0) along its
     /// middle and back: the crawl's closed curve for a dumbbell's ball and its piece of neck.

@@ -1648,14 +1648,6 @@ fn defer_ends_on_gaps(
     on_gaps
 }
 
-/// For each T-end, the strokes that pass through its junction point (the stroke it ran into),
-/// as (end vertex, stroke) pairs.
-/// How much of a straight bridge between a free end and a T-end runs inside the junction's ink:
-/// the T-end is taken at the junction point, which thinning puts where the branches' centre lines
-/// meet, up to a pen width or two inside the ink the free end's pen lift ends at. The gap on
-/// paper ends at the nearest of the junction's strokes ([`JUNCTION_INK_REACH_IN_PEN_WIDTHS`]
-/// around it), the T-end's own and those it ran into; the rest is ink, not a gap, as the
-/// stretch a corner bridge runs alongside a stroke ([`alongside_length`]).
 /// Whether ends `a` and `b` point at each other, each within [`FACING_MAX_DEGREES`] of the line
 /// between them.
 fn ends_face_each_other(a: &BridgeableEnd, b: &BridgeableEnd) -> bool {
@@ -1677,6 +1669,12 @@ fn ends_face_each_other(a: &BridgeableEnd, b: &BridgeableEnd) -> bool {
 /// seed 6 +1 (that cloud), nothing else gained or lost on any split; 14 of 3456 outputs change.
 const FACING_MAX_DEGREES: f64 = 30.0;
 
+/// How much of a straight bridge between a free end and a T-end runs inside the junction's ink:
+/// the T-end is taken at the junction point, which thinning puts where the branches' centre lines
+/// meet, up to a pen width or two inside the ink the free end's pen lift ends at. The gap on
+/// paper ends at the nearest of the junction's strokes ([`JUNCTION_INK_REACH_IN_PEN_WIDTHS`]
+/// around it), the T-end's own and those it ran into; the rest is ink, not a gap, as the
+/// stretch a corner bridge runs alongside a stroke ([`alongside_length`]).
 fn into_junction_ink(
     vertices: &StrokeVertices,
     junction_strokes: &HashMap<u32, Vec<usize>>,
@@ -1728,6 +1726,8 @@ fn into_junction_ink(
 // and 2.5 pen widths measure the same.
 const JUNCTION_INK_REACH_IN_PEN_WIDTHS: f64 = 1.5;
 
+/// For each T-end, the strokes that pass through its junction point (the stroke it ran into),
+/// as (end vertex, stroke) pairs.
 fn strokes_ran_into(vertices: &StrokeVertices, ends: &[BridgeableEnd]) -> HashSet<(u32, usize)> {
     let mut junctions: HashMap<PointKey, Vec<u32>> = HashMap::new();
     for end in ends.iter().filter(|end| end.attached) {

@@ -657,9 +657,9 @@ const COVERED_STUB_IN_PEN_WIDTHS: f64 = 1.5;
 /// See [`COVERED_STUB_IN_PEN_WIDTHS`].
 const STUB_MAX_IN_PEN_WIDTHS: f64 = 5.0;
 
-/// Drops every open curve of `curves` that lies all along within [`COVERED_IN_PEN_WIDTHS`] of
-/// the other curves ([`COVERED_STUB_IN_PEN_WIDTHS`] for a stub) (sampled every [`ARC_STEP_PX`]), in order: of two curves that cover each
-/// other, the first goes and the second stays.
+/// Drops every open curve of `curves` that lies all along (sampled every [`ARC_STEP_PX`]) within
+/// [`COVERED_IN_PEN_WIDTHS`] of the other curves, [`COVERED_STUB_IN_PEN_WIDTHS`] for a stub, in
+/// order: of two curves that cover each other, the first goes and the second stays.
 pub fn drop_covered_open_curves(curves: &mut Vec<Polyline>, stroke_width: f64) {
     if stroke_width <= 0.0 || !curves.iter().any(|c| !c.closed) {
         return;

@@ -15,7 +15,7 @@ use std::collections::BTreeMap;
 
 use super::bridges::BRIDGE_MAX_IN_TYPICAL_GAPS;
 use crate::geometry::grid::PointGrid;
-use crate::geometry::polyline::{lines_meet, signed_turn, Polyline};
+use crate::geometry::polyline::{lines_meet, point_along, signed_turn, Polyline};
 
 /// Two curves meet at a point where a vertex of one lies within this much (pen widths) of a
 /// vertex of the other: both passed the same junction of the ink.
@@ -194,38 +194,12 @@ fn corner_arm_going_on(points: &[Point], k: usize, ahead: Vec2, arm: f64) -> Opt
         .then_some(on == after)
 }
 
-/// The point `length` along the curve from `points[k]` (forwards or backwards); none where the
-/// curve is shorter.
-fn point_along(points: &[Point], k: usize, length: f64, forwards: bool) -> Option<Point> {
-    let mut walked = 0.0;
-    let mut at = k;
-    loop {
-        let next = if forwards {
-            (at + 1 < points.len()).then_some(at + 1)?
-        } else {
-            at.checked_sub(1)?
-        };
-        let step = points[at].distance(points[next]);
-        if walked + step >= length {
-            // Within this segment: a long one (a bridge) holds both of an arm's points.
-            let t = if step > 0.0 {
-                (length - walked) / step
-            } else {
-                0.0
-            };
-            return Some(points[at].lerp(points[next], t));
-        }
-        walked += step;
-        at = next;
-    }
-}
-
 /// The unit direction of an arm of the curve from `points[k]` (forwards or backwards): from the
 /// point [`CORNER_LINE_FROM`] of `length` along it to the point `length` along it, past the
 /// junction's blur; none where the curve is shorter.
 fn arm_direction(points: &[Point], k: usize, length: f64, forwards: bool) -> Option<Vec2> {
-    let way = point_along(points, k, length, forwards)?
-        - point_along(points, k, CORNER_LINE_FROM * length, forwards)?;
+    let way = point_along(points, false, k, length, forwards)?
+        - point_along(points, false, k, CORNER_LINE_FROM * length, forwards)?;
     let size = way.hypot();
     (size > 0.0).then(|| way / size)
 }
@@ -241,8 +215,8 @@ fn corner_of(
 ) -> Option<Point> {
     let line = |(points, k, forwards): (&[Point], usize, bool)| {
         Some((
-            point_along(points, k, arm, forwards)?,
-            point_along(points, k, CORNER_LINE_FROM * arm, forwards)?,
+            point_along(points, false, k, arm, forwards)?,
+            point_along(points, false, k, CORNER_LINE_FROM * arm, forwards)?,
         ))
     };
     let ((x_far, x_near), (y_far, y_near)) = (line(x)?, line(y)?);
@@ -349,6 +323,16 @@ mod tests {
         .resample(2.0)
     }
 
+    /// The curve of `curves` that is the "K"'s whole stem, straight down x = 0 from y = 0 to 60.
+    fn whole_stem(curves: &[Polyline]) -> &Polyline {
+        let stem = curves
+            .iter()
+            .find(|c| c.points.iter().all(|p| p.x.abs() < 1.0))
+            .expect("a straight stem");
+        assert!(stem.points.iter().any(|p| p.y < 1.0) && stem.points.iter().any(|p| p.y > 59.0));
+        stem
+    }
+
     #[test]
     fn a_k_whose_curves_turned_at_the_junction_gets_its_stem_back() {
         // The stem from (0, 0) down to (0, 60); the arm from (30, 0) and the leg to (30, 60),
@@ -359,11 +343,7 @@ mod tests {
             line(&[(30.0, 0.0), (0.5, 30.5), (0.0, 60.0)]),
         ];
         pair_arms_straightest_first(&mut curves, 3.0);
-        let stem = curves
-            .iter()
-            .find(|c| c.points.iter().all(|p| p.x.abs() < 1.0))
-            .expect("a straight stem");
-        assert!(stem.points.iter().any(|p| p.y < 1.0) && stem.points.iter().any(|p| p.y > 59.0));
+        let stem = whole_stem(&curves);
         let corner = curves.iter().find(|c| !std::ptr::eq(*c, stem)).unwrap();
         let ends = [corner.points[0], corner.points[corner.points.len() - 1]];
         assert!(ends.iter().all(|p| p.x > 29.0), "{ends:?}");
@@ -381,11 +361,7 @@ mod tests {
             line(&[(30.0, 0.0), (0.5, 30.5), (0.0, 60.0)]),
         ];
         pair_arms_straightest_first(&mut curves, 3.0);
-        let stem = curves
-            .iter()
-            .find(|c| c.points.iter().all(|p| p.x.abs() < 1.0))
-            .expect("a straight stem");
-        assert!(stem.points.iter().any(|p| p.y < 1.0) && stem.points.iter().any(|p| p.y > 59.0));
+        whole_stem(&curves);
     }
 
     #[test]

@@ -172,6 +172,42 @@ pub(crate) fn nearest_point_index(points: &[Point], to: Point) -> Option<usize> 
     (0..points.len()).min_by(|&a, &b| points[a].distance(to).total_cmp(&points[b].distance(to)))
 }
 
+/// The point `length` along the curve `points` from `points[k]`, forwards or backwards (round
+/// from the last point to the first where the curve is `closed`, at most once round); none where
+/// the curve is shorter than that.
+pub(crate) fn point_along(
+    points: &[Point],
+    closed: bool,
+    k: usize,
+    length: f64,
+    forwards: bool,
+) -> Option<Point> {
+    let n = points.len();
+    let mut walked = 0.0;
+    let mut at = k;
+    for _ in 0..n {
+        let next = match (closed, forwards) {
+            (false, true) => (at + 1 < n).then_some(at + 1)?,
+            (false, false) => at.checked_sub(1)?,
+            (true, true) => (at + 1) % n,
+            (true, false) => (at + n - 1) % n,
+        };
+        let step = points[at].distance(points[next]);
+        if walked + step >= length {
+            // Within this segment: a long one (a bridge) holds the point wherever it falls.
+            let t = if step > 0.0 {
+                (length - walked) / step
+            } else {
+                0.0
+            };
+            return Some(points[at].lerp(points[next], t));
+        }
+        walked += step;
+        at = next;
+    }
+    None
+}
+
 /// The distance from `p` to the nearest point of the segment `line`.
 pub(crate) fn distance_to_segment(p: Point, line: kurbo::Line) -> f64 {
     use kurbo::ParamCurveNearest;
