@@ -15,6 +15,7 @@ use crate::crawl::contacts::{
 };
 use crate::crawl::crossings::{go_on_through_corners, pair_arms_straightest_first};
 use crate::crawl::outline_gaps::close_outline_gaps;
+use crate::crawl::slivers::open_slivers;
 use crate::crawl::spikes::{fold_collapsed_spikes, join_free_ends_to_spike_tips};
 use crate::crawl::strokes::{connect_measured, Connected, Method};
 use crate::crawl::tips::restore_tips;
@@ -193,6 +194,7 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
         close_outline_gaps(&mut curves, stroke_width, typical_gap);
         pair_arms_straightest_first(&mut curves, stroke_width);
         go_on_through_corners(&mut curves, typical_gap, stroke_width);
+        open_slivers(&mut curves, stroke_width);
         // The stages since the first check can leave a piece beside a path that covers it.
         drop_covered_open_curves(&mut curves, stroke_width);
         restore_tips(&mut curves, &raster.mask, stroke_width);

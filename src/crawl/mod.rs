@@ -19,6 +19,7 @@ pub mod neighbours;
 pub mod outline_gaps;
 pub mod reconstruct;
 pub mod robust;
+pub mod slivers;
 pub mod spikes;
 pub mod strokes;
 mod through;
