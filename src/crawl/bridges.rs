@@ -918,13 +918,7 @@ impl<'a> Matching<'a> {
             }
         }
         for i in 0..result.len() {
-            let mut near: Vec<usize> = grid
-                .around(middle(result[i]))
-                .copied()
-                .filter(|&j| j > i)
-                .collect();
-            near.sort_unstable();
-            for j in near {
+            for j in later_around(&grid, middle(result[i]), i) {
                 let (p, q) = (result[i], result[j]);
                 if !rearrangeable.contains(p)
                     || !rearrangeable.contains(q)
@@ -932,14 +926,8 @@ impl<'a> Matching<'a> {
                 {
                     continue;
                 }
-                let swapped = [(p.a, q.a, p.b, q.b), (p.a, q.b, p.b, q.a)]
-                    .into_iter()
-                    .filter_map(|(u1, v1, u2, v2)| {
-                        Some((
-                            rearrangeable.between(u1, v1)?,
-                            rearrangeable.between(u2, v2)?,
-                        ))
-                    })
+                let swapped = rearrangeable
+                    .other_pairings(p, q)
                     .filter(|(x, y)| x.least_cost + y.least_cost < p.least_cost + q.least_cost)
                     .min_by(|x, y| (x.0.cost + x.1.cost).total_cmp(&(y.0.cost + y.1.cost)));
                 if let Some((x, y)) = swapped {
@@ -1044,13 +1032,7 @@ impl<'a> Matching<'a> {
             }
         }
         for i in 0..result.len() {
-            let mut near: Vec<usize> = grid
-                .around(middle(result[i]))
-                .copied()
-                .filter(|&j| j > i)
-                .collect();
-            near.sort_unstable();
-            for j in near {
+            for j in later_around(&grid, middle(result[i]), i) {
                 let (p, q) = (result[i], result[j]);
                 if !plain(p)
                     || !plain(q)
@@ -1062,14 +1044,8 @@ impl<'a> Matching<'a> {
                 if middle(p).distance(middle(q)) > p.length + q.length {
                     continue;
                 }
-                let Some((x, y)) = [(p.a, q.a, p.b, q.b), (p.a, q.b, p.b, q.a)]
-                    .into_iter()
-                    .filter_map(|(u1, v1, u2, v2)| {
-                        Some((
-                            rearrangeable.between(u1, v1)?,
-                            rearrangeable.between(u2, v2)?,
-                        ))
-                    })
+                let Some((x, y)) = rearrangeable
+                    .other_pairings(p, q)
                     .filter(|(x, y)| {
                         plain(x)
                             && plain(y)
@@ -1203,6 +1179,14 @@ impl<'a> Matching<'a> {
     }
 }
 
+/// The items of `grid` around `at` numbered after `i`, in order: each pair of bridges is looked
+/// at once, the earlier first.
+fn later_around(grid: &PointGrid<usize>, at: Point, i: usize) -> Vec<usize> {
+    let mut near: Vec<usize> = grid.around(at).copied().filter(|&j| j > i).collect();
+    near.sort_unstable();
+    near
+}
+
 /// A rough typical gap, from the gaps of an unlimited matching sorted shortest first: their
 /// median, leaving out gaps longer than an ordinary bridge may be against it, clamped as
 /// [`clamped_typical_gap`].
@@ -1303,6 +1287,18 @@ impl<'a> Rearrangeable<'a> {
             .iter()
             .copied()
             .find(|c| c.other_end(u) == v)
+    }
+
+    /// The two other pairings of the four ends of bridges `p` and `q`, where both of a pairing's
+    /// bridges are among these.
+    fn other_pairings(
+        &self,
+        p: &Candidate,
+        q: &Candidate,
+    ) -> impl Iterator<Item = (&'a Candidate, &'a Candidate)> + '_ {
+        [(p.a, q.a, p.b, q.b), (p.a, q.b, p.b, q.a)]
+            .into_iter()
+            .filter_map(|(u1, v1, u2, v2)| Some((self.between(u1, v1)?, self.between(u2, v2)?)))
     }
 
     /// Whether the bridge between `candidate`'s two ends is one of these (candidates come once
@@ -3547,13 +3543,49 @@ mod tests {
         assert!(straight_bridge_path(&a, &curving, 3.0).is_empty());
     }
 
+    /// The pairs [`Matching::open_sealed_loops`] leaves of a body's two ends at (-4, 0) and
+    /// (4, 0), facing each other across a leg's top (vertices 0 and 5, on the strokes
+    /// `end_strokes[0..2]`), and the leg's two ends below them at (-4, 6) and (4, 6), pointing up
+    /// (vertices 6 and 9, on `end_strokes[2..4]`): matched are the body's bridge straight across
+    /// (8) and the leg's ends joined under it (12); each side going on up into the body costs
+    /// `side_cost`.
+    fn body_and_leg_pairs(
+        strokes: &[&[(f64, f64)]],
+        end_strokes: [usize; 4],
+        side_cost: f64,
+    ) -> Vec<(u32, u32)> {
+        let vertices = open_strokes(strokes);
+        let end = |vertex: u32, stroke: usize, way: Vec2| BridgeableEnd {
+            vertex,
+            ..free_end(stroke, vertices.positions[vertex as usize], way, 0.0)
+        };
+        let (left, right, up) = (
+            Vec2::new(-1.0, 0.0),
+            Vec2::new(1.0, 0.0),
+            Vec2::new(0.0, -1.0),
+        );
+        let ends = vec![
+            end(0, end_strokes[0], right),
+            end(5, end_strokes[1], left),
+            end(6, end_strokes[2], up),
+            end(9, end_strokes[3], up),
+        ];
+        let candidates = [
+            plain_bridge(&vertices, 0, 5, 8.0),
+            plain_bridge(&vertices, 6, 9, 12.0),
+            plain_bridge(&vertices, 0, 6, side_cost),
+            plain_bridge(&vertices, 5, 9, side_cost),
+        ];
+        let matching = Matching::new(&vertices, &ends, &candidates, &[], 3.0);
+        let rearrangeable = matching.rearrangeable(10.0);
+        pairs(&matching.open_sealed_loops(vec![&candidates[0], &candidates[1]], &rearrangeable))
+    }
+
     #[test]
     fn a_loop_sealed_beside_another_curve_opens_into_it() {
-        // An animal's body (stroke 0) whose pen lifted at both top corners of a leg: its ends at
-        // (-4, 0) and (4, 0) face each other across the leg's top; the leg (stroke 1) hangs
-        // below with its two sides' ends at (-4, 6) and (4, 6), pointing up. The cheapest
-        // pairing seals the body straight across (8) and the leg on itself (12); each side
-        // going on up into the body costs 13, 26 in all: 1.3 times as much, and one outline.
+        // An animal's body (stroke 0) whose pen lifted at both top corners of a leg (stroke 1):
+        // the cheapest pairing seals the body straight across and the leg on itself (8 + 12);
+        // each side going on up into the body, 26 in all, is 1.3 times as much and one outline.
         let strokes: [&[(f64, f64)]; 2] = [
             &[
                 (-4.0, 0.0),
@@ -3565,36 +3597,15 @@ mod tests {
             ],
             &[(-4.0, 6.0), (-4.0, 30.0), (4.0, 30.0), (4.0, 6.0)],
         ];
-        let vertices = open_strokes(&strokes);
-        let end = |vertex: u32, stroke: usize, way: Vec2| BridgeableEnd {
-            vertex,
-            ..free_end(stroke, vertices.positions[vertex as usize], way, 0.0)
-        };
-        let (left, right, up) = (
-            Vec2::new(-1.0, 0.0),
-            Vec2::new(1.0, 0.0),
-            Vec2::new(0.0, -1.0),
+        assert_eq!(
+            body_and_leg_pairs(&strokes, [0, 0, 1, 1], 13.0),
+            [(0, 6), (5, 9)]
         );
-        let ends = vec![
-            end(0, 0, right),
-            end(5, 0, left),
-            end(6, 1, up),
-            end(9, 1, up),
-        ];
-        let opened = |side_cost: f64| {
-            let candidates = [
-                plain_bridge(&vertices, 0, 5, 8.0),
-                plain_bridge(&vertices, 6, 9, 12.0),
-                plain_bridge(&vertices, 0, 6, side_cost),
-                plain_bridge(&vertices, 5, 9, side_cost),
-            ];
-            let matching = Matching::new(&vertices, &ends, &candidates, &[], 3.0);
-            let rearrangeable = matching.rearrangeable(10.0);
-            pairs(&matching.open_sealed_loops(vec![&candidates[0], &candidates[1]], &rearrangeable))
-        };
-        assert_eq!(opened(13.0), [(0, 6), (5, 9)]);
         // Twice as dear, the two loops stay.
-        assert_eq!(opened(20.0), [(0, 5), (6, 9)]);
+        assert_eq!(
+            body_and_leg_pairs(&strokes, [0, 0, 1, 1], 20.0),
+            [(0, 5), (6, 9)]
+        );
     }
 
     #[test]
@@ -3607,32 +3618,10 @@ mod tests {
             &[(-4.0, 6.0), (-4.0, 30.0)],
             &[(4.0, 30.0), (4.0, 6.0)],
         ];
-        let vertices = open_strokes(&strokes);
-        let end = |vertex: u32, stroke: usize, way: Vec2| BridgeableEnd {
-            vertex,
-            ..free_end(stroke, vertices.positions[vertex as usize], way, 0.0)
-        };
-        let (left, right, up) = (
-            Vec2::new(-1.0, 0.0),
-            Vec2::new(1.0, 0.0),
-            Vec2::new(0.0, -1.0),
+        assert_eq!(
+            body_and_leg_pairs(&strokes, [0, 1, 2, 3], 13.0),
+            [(0, 5), (6, 9)]
         );
-        let ends = vec![
-            end(0, 0, right),
-            end(5, 1, left),
-            end(6, 2, up),
-            end(9, 3, up),
-        ];
-        let candidates = [
-            plain_bridge(&vertices, 0, 5, 8.0),
-            plain_bridge(&vertices, 6, 9, 12.0),
-            plain_bridge(&vertices, 0, 6, 13.0),
-            plain_bridge(&vertices, 5, 9, 13.0),
-        ];
-        let matching = Matching::new(&vertices, &ends, &candidates, &[], 3.0);
-        let rearrangeable = matching.rearrangeable(10.0);
-        let kept = matching.open_sealed_loops(vec![&candidates[0], &candidates[1]], &rearrangeable);
-        assert_eq!(pairs(&kept), [(0, 5), (6, 9)]);
     }
 
     #[test]
