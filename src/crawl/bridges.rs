@@ -64,6 +64,12 @@ struct Candidate {
 }
 
 impl Candidate {
+    /// Whether the bridge joins two free ends directly: no corner of another stroke gone
+    /// through, no T-end.
+    fn is_plain(&self) -> bool {
+        self.through.is_none() && self.between_free_ends
+    }
+
     /// The end across the bridge from end `v`.
     fn other_end(&self, v: u32) -> u32 {
         if self.a == v {
@@ -498,6 +504,13 @@ impl<'a> Matching<'a> {
         }
     }
 
+    /// The strokes bridge `m` joins: its end's, and the other end's or, through a corner, the
+    /// stroke it goes on into.
+    fn strokes_joined(&self, m: &Candidate) -> (usize, usize) {
+        let b = m.through.map_or_else(|| self.stroke_of[&m.b], |t| t.stroke);
+        (self.stroke_of[&m.a], b)
+    }
+
     /// The gap the pen left, ink to ink: thinning ends every stroke half a pen width inside its
     /// ink, so a bridge between two skeleton ends is a pen width longer than the gap on paper.
     /// Ratios of gaps are ratios of these.
@@ -663,8 +676,8 @@ impl<'a> Matching<'a> {
         // ends take its two inner ones, closing it on itself).
         let mut groups = StrokeGroups::new(self.vertices);
         for m in &matched {
-            let stroke_b = m.through.map_or_else(|| self.stroke_of[&m.b], |t| t.stroke);
-            groups.join(self.stroke_of[&m.a], stroke_b, m.length);
+            let (stroke_a, stroke_b) = self.strokes_joined(m);
+            groups.join(stroke_a, stroke_b, m.length);
         }
         let mut open: Vec<u32> = remaining
             .iter()
@@ -963,11 +976,6 @@ impl<'a> Matching<'a> {
         matched: Vec<&'a Candidate>,
         rearrangeable: &Rearrangeable<'a>,
     ) -> Vec<&'a Candidate> {
-        let plain = |m: &Candidate| m.through.is_none() && m.between_free_ends;
-        let strokes = |m: &Candidate| {
-            let b = m.through.map_or_else(|| self.stroke_of[&m.b], |t| t.stroke);
-            (self.stroke_of[&m.a], b)
-        };
         let position = |v: u32| self.vertices.positions[v as usize];
         let middle = |c: &Candidate| position(c.a).midpoint(position(c.b));
         // Strokes that meet at a junction share its vertex.
@@ -1002,7 +1010,7 @@ impl<'a> Matching<'a> {
                 join(&mut sets, a, b);
             }
             for m in result {
-                let (a, b) = strokes(m);
+                let (a, b) = self.strokes_joined(m);
                 join(&mut sets, a, b);
             }
             let mut links: HashMap<u32, Vec<(usize, usize, Option<usize>)>> = HashMap::new();
@@ -1013,7 +1021,7 @@ impl<'a> Matching<'a> {
                     .push((a, b, None));
             }
             for (k, m) in result.iter().enumerate() {
-                let (a, b) = strokes(m);
+                let (a, b) = self.strokes_joined(m);
                 links
                     .entry(sets.find(a as u32))
                     .or_default()
@@ -1027,15 +1035,15 @@ impl<'a> Matching<'a> {
         // moves a midpoint by less than the longest more.
         let mut grid = PointGrid::new((3.0 * longest).max(1.0));
         for (k, m) in result.iter().enumerate() {
-            if plain(m) {
+            if m.is_plain() {
                 grid.insert(middle(m), k);
             }
         }
         for i in 0..result.len() {
             for j in later_around(&grid, middle(result[i]), i) {
                 let (p, q) = (result[i], result[j]);
-                if !plain(p)
-                    || !plain(q)
+                if !p.is_plain()
+                    || !q.is_plain()
                     || !rearrangeable.contains(p)
                     || !rearrangeable.contains(q)
                 {
@@ -1047,8 +1055,8 @@ impl<'a> Matching<'a> {
                 let Some((x, y)) = rearrangeable
                     .other_pairings(p, q)
                     .filter(|(x, y)| {
-                        plain(x)
-                            && plain(y)
+                        x.is_plain()
+                            && y.is_plain()
                             && x.cost + y.cost <= SEALED_LOOP_MAX_COST_FACTOR * (p.cost + q.cost)
                             && !self.bridges_cross(x, y)
                     })
@@ -1057,7 +1065,7 @@ impl<'a> Matching<'a> {
                     continue;
                 };
                 // The two curves without `p` and `q`.
-                let ((pa, pb), (qa, qb)) = (strokes(p), strokes(q));
+                let ((pa, pb), (qa, qb)) = (self.strokes_joined(p), self.strokes_joined(q));
                 let mut roots = vec![curves.find(pa as u32), curves.find(qa as u32)];
                 roots.dedup();
                 let mut parent: HashMap<usize, usize> = HashMap::new();
@@ -1099,23 +1107,18 @@ impl<'a> Matching<'a> {
         matched: Vec<&'a Candidate>,
         typical_gap: f64,
     ) -> Vec<&'a Candidate> {
-        let plain = |m: &Candidate| m.through.is_none() && m.between_free_ends;
-        let strokes = |m: &Candidate| {
-            let b = m.through.map_or_else(|| self.stroke_of[&m.b], |t| t.stroke);
-            (self.stroke_of[&m.a], b)
-        };
         let mut groups = StrokeGroups::new(self.vertices);
         let mut closing = Vec::new();
-        for m in matched.iter().filter(|m| plain(m)) {
-            let (a, b) = strokes(m);
+        for m in matched.iter().filter(|m| m.is_plain()) {
+            let (a, b) = self.strokes_joined(m);
             if groups.same(a, b) {
                 closing.push(a);
             }
             groups.join(a, b, 0.0);
         }
         let mut mixed = HashSet::new();
-        for m in matched.iter().filter(|m| !plain(m)) {
-            let (a, b) = strokes(m);
+        for m in matched.iter().filter(|m| !m.is_plain()) {
+            let (a, b) = self.strokes_joined(m);
             mixed.insert(groups.root(a));
             mixed.insert(groups.root(b));
         }
@@ -1125,11 +1128,13 @@ impl<'a> Matching<'a> {
             .filter(|root| !mixed.contains(root))
             .collect();
         let is_opening = |m: &Candidate| {
-            plain(m) && self.ink_gap(m) >= OPENING_MIN_IN_TYPICAL_GAPS * typical_gap
+            m.is_plain() && self.ink_gap(m) >= OPENING_MIN_IN_TYPICAL_GAPS * typical_gap
         };
         let mut openings: HashMap<usize, usize> = HashMap::new();
         for m in matched.iter().filter(|m| is_opening(m)) {
-            *openings.entry(groups.root(strokes(m).0)).or_default() += 1;
+            *openings
+                .entry(groups.root(self.strokes_joined(m).0))
+                .or_default() += 1;
         }
         matched
             .into_iter()
@@ -1137,7 +1142,7 @@ impl<'a> Matching<'a> {
                 if !is_opening(m) {
                     return true;
                 }
-                let root = groups.root(strokes(m).0);
+                let root = groups.root(self.strokes_joined(m).0);
                 !(loops.contains(&root) && openings[&root] >= 2)
             })
             .collect()

@@ -21,7 +21,7 @@ use super::bridges::BridgeableEnd;
 use super::strokes::{components, StrokeVertices};
 use super::through::angle;
 use crate::geometry::grid::PointGrid;
-use crate::geometry::polyline::polyline_length;
+use crate::geometry::polyline::{polyline_length, signed_area};
 use crate::geometry::Polyline;
 
 /// DECISION: two free ends side by side are at most this far apart (centre to centre, in widths
@@ -805,17 +805,6 @@ fn roundness(points: &[Point]) -> f64 {
     }
     // `signed_area` gives twice the area.
     2.0 * std::f64::consts::PI * signed_area(points).abs() / (perimeter * perimeter)
-}
-
-/// Twice the signed area of a closed polygon (positive counter-clockwise in y-up axes).
-fn signed_area(points: &[Point]) -> f64 {
-    let n = points.len();
-    (0..n)
-        .map(|k| {
-            let (a, b) = (points[k], points[(k + 1) % n]);
-            a.x * b.y - b.x * a.y
-        })
-        .sum()
 }
 
 /// Whether `p` lies inside the closed polygon `points` (even-odd rule).

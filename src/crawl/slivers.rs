@@ -8,7 +8,7 @@
 
 use kurbo::{Line, Point};
 
-use crate::geometry::polyline::{distance_to_segment, polyline_length};
+use crate::geometry::polyline::{distance_to_segment, polyline_length, signed_area};
 use crate::geometry::Polyline;
 
 /// A closed curve is looked at as a sliver only where its mean width (twice its area over its
@@ -62,14 +62,7 @@ fn sliver_sides(curve: &Polyline, stroke_width: f64) -> Option<[Polyline; 2]> {
         return None;
     }
     let length = polyline_length(points, true);
-    let area = (0..n)
-        .map(|k| {
-            let (p, q) = (points[k], points[(k + 1) % n]);
-            p.x * q.y - q.x * p.y
-        })
-        .sum::<f64>()
-        .abs()
-        / 2.0;
+    let area = signed_area(points).abs() / 2.0;
     let mean_width = 2.0 * area / length.max(f64::MIN_POSITIVE);
     if length <= 0.0
         || mean_width > SLIVER_MAX_MEAN_WIDTH_IN_PEN_WIDTHS * stroke_width

@@ -41,6 +41,18 @@ impl Polyline {
     }
 }
 
+/// Twice the signed area of the closed polygon through `points` (positive counter-clockwise in
+/// y-up axes; the shoelace formula).
+pub fn signed_area(points: &[Point]) -> f64 {
+    let n = points.len();
+    (0..n)
+        .map(|k| {
+            let (a, b) = (points[k], points[(k + 1) % n]);
+            a.x * b.y - b.x * a.y
+        })
+        .sum()
+}
+
 /// The length of an ordered chain of points, including the closing segment if `closed`
 /// ([`Polyline::length`] for points held elsewhere).
 pub fn polyline_length(points: &[Point], closed: bool) -> f64 {
