@@ -2473,9 +2473,15 @@ fn bridge_shapes(
         // their lines' meeting point is no corner: the curve goes on round a bend, through the
         // point of an arc tangent to both lines, which lies short of the meeting point by the
         // ratio tan(θ/2) / tan θ, θ the mean turn at the two ends (measured on the benchmark:
-        // dev 294 → 298, val 286 → 291; with both bending on only, 296 and 289).
-        let gentle = turn_a.max(turn_b) <= GENTLE_BEND_MAX_TURN_DEGREES.to_radians()
-            && matches!((a.outward, b.outward), (Some(ua), Some(ub)) if ua.cross(chord) * chord.cross(-ub) > 0.0);
+        // dev 294 → 298, val 286 → 291; with both bending on only, 296 and 289). So too where
+        // both ends turn the same way round into the gap, gently (stop 51,
+        // [`GENTLE_BEND_MAX_TURN_DEGREES`]), whether their strokes show a bend or not.
+        let same_way_round = a
+            .outward
+            .zip(b.outward)
+            .is_some_and(|(ua, ub)| ua.cross(chord) * chord.cross(-ub) > 0.0);
+        let gentle =
+            same_way_round && turn_a.max(turn_b) <= GENTLE_BEND_MAX_TURN_DEGREES.to_radians();
         let meeting = meeting.map(|(corner, length)| {
             if !curve_goes_on(&a, &b) && !gentle {
                 return (corner, length);

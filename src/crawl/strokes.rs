@@ -645,12 +645,12 @@ const LOOP_CLOSING_ARM_IN_PEN_WIDTHS: f64 = 2.0;
 /// so the turn between the end's way and the loop's is split evenly across the gap). A balloon
 /// whose first stroke ends a pen lift short of the knot, round the curve, turns 64° and 90°
 /// between the end's way and the loop's way out of the knot (two on the benchmark), about half
-/// at each end of the gap: the mirrored way is 12° and 20° off the loop's.
-/// Not where the chain's other end lies within an ordinary bridge of the end: the two ends of
-/// one outline beside each other (a keyhole's slot, whose first side ends at the hole) close it
-/// whole ([`super::outline_gaps`]). Measured on the benchmark (exact of 432): seeds 3 and 6 +1 each (two
-/// balloons), the other splits unchanged, none lost; without the other-end test seed 1 lost
-/// that keyhole.
+/// at each end of the gap: the mirrored way is 12° and 20° off the loop's. Not where the
+/// chain's other end lies within an ordinary bridge of the end: the two ends of one outline
+/// beside each other (a keyhole's slot, whose first side ends at the hole) close it whole
+/// ([`super::outline_gaps`]). Measured on the benchmark (exact of 432): seeds 3 and 6 +1 each
+/// (two balloons), the other splits unchanged, none lost; without the other-end test seed 1
+/// lost that keyhole.
 fn loop_and_tail(
     chain: Chain,
     vertices: &StrokeVertices,
