@@ -2476,12 +2476,8 @@ fn bridge_shapes(
         // dev 294 → 298, val 286 → 291; with both bending on only, 296 and 289). So too where
         // both ends turn the same way round into the gap, gently (stop 51,
         // [`GENTLE_BEND_MAX_TURN_DEGREES`]), whether their strokes show a bend or not.
-        let same_way_round = a
-            .outward
-            .zip(b.outward)
-            .is_some_and(|(ua, ub)| ua.cross(chord) * chord.cross(-ub) > 0.0);
-        let gentle =
-            same_way_round && turn_a.max(turn_b) <= GENTLE_BEND_MAX_TURN_DEGREES.to_radians();
+        let gentle = turn_same_way_round(&a, &b)
+            && turn_a.max(turn_b) <= GENTLE_BEND_MAX_TURN_DEGREES.to_radians();
         let meeting = meeting.map(|(corner, length)| {
             if !curve_goes_on(&a, &b) && !gentle {
                 return (corner, length);
@@ -2514,6 +2510,16 @@ fn bridge_shapes(
         None
     };
     (straight, corner)
+}
+
+/// Whether ends `a` and `b` both turn the same way round (both to the left, or both to the right)
+/// to follow the chord between them: the two ends of one bend, not of an S or a step. False for a
+/// dot, which has no way.
+fn turn_same_way_round(a: &BridgeEnd, b: &BridgeEnd) -> bool {
+    let chord = b.at - a.at;
+    a.outward
+        .zip(b.outward)
+        .is_some_and(|(ua, ub)| ua.cross(chord) * chord.cross(-ub) > 0.0)
 }
 
 /// Whether the strokes of ends `a` and `b` go on round a bend into the gap between them, the
@@ -2651,10 +2657,9 @@ fn arc_between_straight_ends(a: &BridgeEnd, b: &BridgeEnd, spacing: f64) -> Vec<
         settled_bend(end.bend) == 0.0 && end.curving.abs() < MIN_CURVING_DEGREES.to_radians()
     };
     let chord = b.at - a.at;
-    let same_way_round = ua.cross(chord) * chord.cross(-ub) > 0.0;
     let bend_limit = MIN_CORNER_TURN_DEGREES.to_radians();
     let gentle = angle(ua, chord) <= bend_limit && angle(ub, -chord) <= bend_limit;
-    if !(straight(a) && straight(b) && same_way_round && gentle) {
+    if !(straight(a) && straight(b) && turn_same_way_round(a, b) && gentle) {
         return Vec::new();
     }
     arc_between(

@@ -21,7 +21,7 @@ use super::bridges::BridgeableEnd;
 use super::strokes::{components, StrokeVertices};
 use super::through::angle;
 use crate::geometry::grid::PointGrid;
-use crate::geometry::polyline::{polyline_length, signed_area};
+use crate::geometry::polyline::{distances_along, polyline_length, signed_area};
 use crate::geometry::Polyline;
 
 /// DECISION: two free ends side by side are at most this far apart (centre to centre, in widths
@@ -760,10 +760,7 @@ fn closing_through_shared_stretch(
     if n < 3 {
         return None;
     }
-    let mut along = vec![0.0; n];
-    for k in 1..n {
-        along[k] = along[k - 1] + points[k].distance(points[k - 1]);
-    }
+    let along = distances_along(points);
     let total = along[n - 1];
     // Where each end stops on the curve, looked for away from both ends (near its own end a
     // curve is always close to itself; near the other end, two ends close together are a gap

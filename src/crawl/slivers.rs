@@ -8,7 +8,9 @@
 
 use kurbo::{Line, Point};
 
-use crate::geometry::polyline::{distance_to_segment, polyline_length, signed_area};
+use crate::geometry::polyline::{
+    distance_to_segment, distances_along, polyline_length, signed_area,
+};
 use crate::geometry::Polyline;
 
 /// A closed curve is looked at as a sliver only where its mean width (twice its area over its
@@ -70,11 +72,7 @@ fn sliver_sides(curve: &Polyline, stroke_width: f64) -> Option<[Polyline; 2]> {
     {
         return None;
     }
-    // Distance along the curve from its first point to each point.
-    let mut along = vec![0.0; n];
-    for k in 1..n {
-        along[k] = along[k - 1] + points[k - 1].distance(points[k]);
-    }
+    let along = distances_along(points);
     let apart_along = |i: usize, j: usize| {
         let d = (along[i] - along[j]).abs();
         d.min(length - d)

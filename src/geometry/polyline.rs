@@ -53,6 +53,16 @@ pub fn signed_area(points: &[Point]) -> f64 {
         .sum()
 }
 
+/// The distance along the chain `points` from its first point to each of its points (0 for the
+/// first).
+pub fn distances_along(points: &[Point]) -> Vec<f64> {
+    let mut along = vec![0.0; points.len()];
+    for k in 1..points.len() {
+        along[k] = along[k - 1] + points[k - 1].distance(points[k]);
+    }
+    along
+}
+
 /// The length of an ordered chain of points, including the closing segment if `closed`
 /// ([`Polyline::length`] for points held elsewhere).
 pub fn polyline_length(points: &[Point], closed: bool) -> f64 {
