@@ -1371,6 +1371,13 @@ fn bridge_candidates(
             .entry(end.vertex)
             .or_insert_with(|| segments.band_partner(vertices, end, stroke_width))
     };
+    // Each end's straight run ([`straight_run`]), found once.
+    let mut straight_runs: HashMap<u32, f64> = HashMap::new();
+    let mut straight_run_of = |end: &BridgeableEnd| -> f64 {
+        *straight_runs
+            .entry(end.vertex)
+            .or_insert_with(|| straight_run(vertices, end, stroke_width, reach))
+    };
     for (a, b) in ends_within(ends, reach) {
         // DECISION: a T-end is never bridged to an end of the stroke it ran into: the T already
         // joins the two strokes, and the short overshoot of that stroke past the junction (a
@@ -1414,11 +1421,11 @@ fn bridge_candidates(
         let shape = bridge_shape(
             || acute_corner_may_miss(vertices, &a, &b, stroke_width),
             BridgeEnd {
-                straight: straight_run(vertices, &a, stroke_width),
+                straight: straight_run_of(&a),
                 ..BridgeEnd::of(&a, ink_behind(vertices, &a, stroke_width))
             },
             BridgeEnd {
-                straight: straight_run(vertices, &b, stroke_width),
+                straight: straight_run_of(&b),
                 ..BridgeEnd::of(&b, ink_behind(vertices, &b, stroke_width))
             },
             rims,
@@ -2195,15 +2202,21 @@ impl BridgeEnd {
 }
 
 /// How far back along the stroke of the free end `end` (pixels) its samples stay within half a
-/// pen width of the end's line: the stretch of ink that line is read from.
-fn straight_run(vertices: &StrokeVertices, end: &BridgeableEnd, stroke_width: f64) -> f64 {
+/// pen width of the end's line: the stretch of ink that line is read from. Counted up to `enough`
+/// at most (no corner leg is longer than the longest bridge).
+fn straight_run(
+    vertices: &StrokeVertices,
+    end: &BridgeableEnd,
+    stroke_width: f64,
+    enough: f64,
+) -> f64 {
     let Some(way) = end.outward else {
         return f64::INFINITY;
     };
     let mut run = 0.0;
     let mut previous = end.at;
     for p in points_from(vertices, end).skip(1) {
-        if (p - end.at).cross(way).abs() > stroke_width / 2.0 {
+        if run >= enough || (p - end.at).cross(way).abs() > stroke_width / 2.0 {
             break;
         }
         run += previous.distance(p);

@@ -6,6 +6,8 @@
 //! turns back on itself (a hairpin: the end of a band the crawl turned round in), the end is put
 //! where the ink ends, with two corners where that end is flat (issue 9).
 
+use std::cell::OnceCell;
+
 use kurbo::{Point, Vec2};
 
 use crate::geometry::grid::PointGrid;
@@ -66,9 +68,16 @@ const INK_CHECK_STEP_PX: f64 = 0.5;
 /// of `mask` confirms it: both new edges lie within half a pen width of ink all along
 /// (`INK_REACH_IN_PEN_WIDTHS`).
 pub fn restore_tips(curves: &mut [Polyline], mask: &Bitmap, stroke_width: f64) {
-    let traced = TracedInk::new(curves, stroke_width);
-    for (c, curve) in curves.iter_mut().enumerate() {
-        let tips = find_tips(curve, c, &traced, mask, stroke_width);
+    // Every curve's tips are found before any moves, so that all see the same curves.
+    let tips: Vec<Vec<Tip>> = {
+        let traced = TracedInk::new(curves, stroke_width);
+        curves
+            .iter()
+            .enumerate()
+            .map(|(c, curve)| find_tips(curve, c, &traced, mask, stroke_width))
+            .collect()
+    };
+    for (curve, tips) in curves.iter_mut().zip(tips) {
         if !tips.is_empty() {
             curve.points = with_tips(curve, &tips);
         }
@@ -76,15 +85,29 @@ pub fn restore_tips(curves: &mut [Polyline], mask: &Bitmap, stroke_width: f64) {
 }
 
 /// Where the curves run: points along every curve at most half a pen width apart, each with its
-/// curve and its arc length along it, in a grid of cells a pen width wide.
-struct TracedInk {
-    grid: PointGrid<(Point, usize, f64)>,
+/// curve and its arc length along it, in a grid of cells a pen width wide. Built when first asked
+/// (a page of noise has half a million curve points, and most pages no nub to check).
+struct TracedInk<'a> {
+    curves: &'a [Polyline],
+    grid: OnceCell<PointGrid<(Point, usize, f64)>>,
     reach: f64,
 }
 
-impl TracedInk {
-    fn new(curves: &[Polyline], stroke_width: f64) -> Self {
-        let reach = stroke_width.max(1.0);
+impl<'a> TracedInk<'a> {
+    fn new(curves: &'a [Polyline], stroke_width: f64) -> Self {
+        Self {
+            curves,
+            grid: OnceCell::new(),
+            reach: stroke_width.max(1.0),
+        }
+    }
+
+    fn grid(&self) -> &PointGrid<(Point, usize, f64)> {
+        self.grid.get_or_init(|| self.index())
+    }
+
+    fn index(&self) -> PointGrid<(Point, usize, f64)> {
+        let (curves, reach) = (self.curves, self.reach);
         let mut grid = PointGrid::new(reach);
         let step = reach / 2.0;
         for (c, curve) in curves.iter().enumerate() {
@@ -109,13 +132,13 @@ impl TracedInk {
                 grid.insert(end, (end, c, along));
             }
         }
-        Self { grid, reach }
+        grid
     }
 
     /// Whether some curve other than `curve`, or `curve` itself farther than `apart` along it
     /// from arc length `at` (on a closed curve of length `total`), runs within a pen width of `p`.
     fn traced_near(&self, p: Point, curve: usize, at: f64, apart: f64, total: f64) -> bool {
-        self.grid.around(p).any(|&(q, c, s)| {
+        self.grid().around(p).any(|&(q, c, s)| {
             let gap = (s - at).abs();
             let gap = if total > 0.0 {
                 gap.min(total - gap)
@@ -206,7 +229,7 @@ impl<'a> ArcWalk<'a> {
 fn find_tips(
     curve: &Polyline,
     index: usize,
-    traced: &TracedInk,
+    traced: &TracedInk<'_>,
     mask: &Bitmap,
     stroke_width: f64,
 ) -> Vec<Tip> {
@@ -269,7 +292,7 @@ fn nub_traced(
     i: usize,
     index: usize,
     apex: Point,
-    traced: &TracedInk,
+    traced: &TracedInk<'_>,
     arm: f64,
 ) -> bool {
     let here = walk.points[i];
