@@ -2457,8 +2457,8 @@ const CORNER_LEG_MAX_IN_STRAIGHT_RUNS: f64 = 1.5;
 /// benchmark after [`CORNER_LEG_MAX_IN_STRAIGHT_RUNS`]: seeds 1, 3, 6, 8 +2, +1, +1, +1 (an
 /// arch's horn, a zigzag's crest, a thick cloud's lobe, an arch, a scanned animal), none lost;
 /// validation and seed 4 unchanged. At 1.5 and 2 times the run +2 and +1; at 0.75 +4 −2
-/// (validation +1, seen); corners from 30° or 60° measure the same. Alone, without the rule for two unread ends, the curving strokes' gains
-/// of that rule are lost.
+/// (validation +1, seen); corners from 30° or 60° measure the same. Alone, without the rule for
+/// two unread ends, the curving strokes' gains of that rule are lost.
 const STUB_LEG_MAX_IN_STRAIGHT_RUNS: f64 = 1.0;
 
 /// A stroke that leaves its end's line by turning at least this much (degrees) at one sample
@@ -2582,7 +2582,8 @@ fn bridge_shapes(
         let gentle = turn_same_way_round(&a, &b)
             && turn_a.max(turn_b) <= GENTLE_BEND_MAX_TURN_DEGREES.to_radians();
         // So too where both ends turn the same way round and the meeting point lies far beyond
-        // the ink either end's line was read from (stop 52, [`CORNER_LEG_MAX_IN_STRAIGHT_RUNS`]).
+        // the ink both ends' lines were read from, or beyond a stub past a corner at one end
+        // (stop 52, [`CORNER_LEG_MAX_IN_STRAIGHT_RUNS`], [`STUB_LEG_MAX_IN_STRAIGHT_RUNS`]).
         let unread = |end: &BridgeEnd, corner: Point| {
             corner.distance(end.at) > CORNER_LEG_MAX_IN_STRAIGHT_RUNS * end.straight.length
         };

@@ -4,7 +4,9 @@
 //! measured over arms of a few pen widths, as corner detectors on digital curves do (Rosenfeld and
 //! Johnston, "Angle detection on digital curves", IEEE Trans. Computers, 1973). Where the curve
 //! turns back on itself (a hairpin: the end of a band the crawl turned round in), the end is put
-//! where the ink ends, with two corners where that end is flat (issue 9).
+//! where the ink ends, with two corners where that end is flat (issue 9); and where a blunter
+//! corner's ink runs on into a nub no curve took (a cloud's notch, its two lobes' ink merged), the
+//! corner goes on to the nub's end (stop 52).
 
 use std::cell::OnceCell;
 
@@ -225,7 +227,8 @@ impl<'a> ArcWalk<'a> {
     }
 }
 
-/// The rounded tips of one curve, at most one per stretch of curve, sharpest first kept.
+/// The rounded tips of one curve, at most one per stretch of curve, sharpest first kept; then its
+/// nubs ([`nub_end`]) where no tip was.
 fn find_tips(
     curve: &Polyline,
     index: usize,
