@@ -2579,8 +2579,9 @@ fn bridge_shapes(
         // dev 294 → 298, val 286 → 291; with both bending on only, 296 and 289). So too where
         // both ends turn the same way round into the gap, gently (stop 51,
         // [`GENTLE_BEND_MAX_TURN_DEGREES`]), whether their strokes show a bend or not.
-        let gentle = turn_same_way_round(&a, &b)
-            && turn_a.max(turn_b) <= GENTLE_BEND_MAX_TURN_DEGREES.to_radians();
+        let same_way_round = turn_same_way_round(&a, &b);
+        let gentle =
+            same_way_round && turn_a.max(turn_b) <= GENTLE_BEND_MAX_TURN_DEGREES.to_radians();
         // So too where both ends turn the same way round and the meeting point lies far beyond
         // the ink both ends' lines were read from, or beyond a stub past a corner at one end
         // (stop 52, [`CORNER_LEG_MAX_IN_STRAIGHT_RUNS`], [`STUB_LEG_MAX_IN_STRAIGHT_RUNS`]).
@@ -2592,7 +2593,7 @@ fn bridge_shapes(
                 && corner.distance(end.at) > STUB_LEG_MAX_IN_STRAIGHT_RUNS * end.straight.length
         };
         let meeting = meeting.map(|(corner, length)| {
-            let stubs = turn_same_way_round(&a, &b)
+            let stubs = same_way_round
                 && ((unread(&a, corner) && unread(&b, corner))
                     || stub(&a, corner)
                     || stub(&b, corner));
@@ -4079,17 +4080,37 @@ mod tests {
         }
     }
 
+    /// Where the corner bridge across [`gap_in_a_circle_spanning`]'s gap (straight strokes) is
+    /// drawn through, its ends' lines read from `runs` of stroke (pen 7).
+    fn corner_across_gap(half_span: f64, runs: [StraightRun; 2]) -> Point {
+        let (a, b) = gap_in_a_circle_spanning(half_span, [0.0, 0.0]);
+        let a = BridgeEnd {
+            straight: runs[0],
+            ..a
+        };
+        let b = BridgeEnd {
+            straight: runs[1],
+            ..b
+        };
+        bridge_shape(|| false, a, b, 0.0, 7.0)
+            .and_then(|shape| shape.corner)
+            .expect("a corner bridge")
+    }
+
+    /// A straight run `length` px long, ending in a corner or not.
+    fn run(length: f64, from_corner: bool) -> StraightRun {
+        StraightRun {
+            length,
+            from_corner,
+        }
+    }
+
     #[test]
     fn a_gentle_gap_between_straight_ends_goes_round_not_through_a_corner() {
         // Straight ends (no bend, no curving) each turning 38° into the gap: a corner bridge is
         // offered (over 35°), but drawn through the arc's point midway, on the circle. Turning
         // 45° each (a right angle with a pen lift at its corner), through the meeting point.
-        let corner_at = |half_span: f64| {
-            let (a, b) = gap_in_a_circle_spanning(half_span, [0.0, 0.0]);
-            bridge_shape(|| false, a, b, 0.0, 7.0)
-                .and_then(|shape| shape.corner)
-                .expect("a corner bridge")
-        };
+        let corner_at = |half_span: f64| corner_across_gap(half_span, [StraightRun::UNMEASURED; 2]);
         let gentle = corner_at(38.0);
         assert!(
             (gentle.x - 30.0).abs() < 0.01 && gentle.y.abs() < 0.01,
@@ -4104,17 +4125,7 @@ mod tests {
         // Ends turning 60° each into a gap in a circle of radius 30: their lines meet at (60, 0),
         // 52 px ahead of each. Read from 5 px of stroke, the bridge goes through the arc's point
         // midway, on the circle; read from 40 px, through the meeting point.
-        let corner_with = |straight: f64| {
-            let (a, b) = gap_in_a_circle_spanning(60.0, [0.0, 0.0]);
-            let straight = StraightRun {
-                length: straight,
-                from_corner: false,
-            };
-            let (a, b) = (BridgeEnd { straight, ..a }, BridgeEnd { straight, ..b });
-            bridge_shape(|| false, a, b, 0.0, 7.0)
-                .and_then(|shape| shape.corner)
-                .expect("a corner bridge")
-        };
+        let corner_with = |length: f64| corner_across_gap(60.0, [run(length, false); 2]);
         let round = corner_with(5.0);
         assert!(
             (round.x - 30.0).abs() < 0.01 && round.y.abs() < 0.01,
@@ -4141,13 +4152,7 @@ mod tests {
             straight_run(&vertices, &end, 4.0, 100.0)
         };
         let notch = runs(&[(12.0, 4.0), (6.0, 12.0), (0.0, 8.0), (0.0, 4.0), (0.0, 0.0)]);
-        assert_eq!(
-            notch,
-            StraightRun {
-                length: 8.0,
-                from_corner: true
-            }
-        );
+        assert_eq!(notch, run(8.0, true));
         let curve = runs(&[(6.0, 24.0), (2.5, 16.0), (0.5, 8.0), (0.0, 4.0), (0.0, 0.0)]);
         assert!(!curve.from_corner && curve.length > 7.0, "{curve:?}");
         // A dot has no line: unmeasured.
@@ -4168,26 +4173,8 @@ mod tests {
         // px ahead), the other from 40 px: through the meeting point. Where the stroke behind the
         // first end turns a corner after those 30 px, that end is a stub, and the bridge goes
         // through the arc's point; where it only curves off its line there, still the corner.
-        let corner_with = |from_corner: bool| {
-            let (a, b) = gap_in_a_circle_spanning(60.0, [0.0, 0.0]);
-            let a = BridgeEnd {
-                straight: StraightRun {
-                    length: 30.0,
-                    from_corner,
-                },
-                ..a
-            };
-            let b = BridgeEnd {
-                straight: StraightRun {
-                    length: 40.0,
-                    from_corner: false,
-                },
-                ..b
-            };
-            bridge_shape(|| false, a, b, 0.0, 7.0)
-                .and_then(|shape| shape.corner)
-                .expect("a corner bridge")
-        };
+        let corner_with =
+            |from_corner: bool| corner_across_gap(60.0, [run(30.0, from_corner), run(40.0, false)]);
         let round = corner_with(true);
         assert!(
             (round.x - 30.0).abs() < 0.01 && round.y.abs() < 0.01,

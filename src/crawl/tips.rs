@@ -13,7 +13,7 @@ use std::cell::OnceCell;
 use kurbo::{Point, Vec2};
 
 use crate::geometry::grid::PointGrid;
-use crate::geometry::polyline::{lines_meet, signed_turn, Polyline};
+use crate::geometry::polyline::{distances_along, lines_meet, signed_turn, Polyline};
 use crate::raster::bitmap::Bitmap;
 
 /// DECISION: a tip turns by at least this much between its arms, measured over
@@ -174,14 +174,8 @@ struct ArcWalk<'a> {
 impl<'a> ArcWalk<'a> {
     fn new(curve: &'a Polyline) -> Self {
         let points = &curve.points;
-        let mut cumulative = Vec::with_capacity(points.len());
-        let mut length = 0.0;
-        for (i, p) in points.iter().enumerate() {
-            if i > 0 {
-                length += points[i - 1].distance(*p);
-            }
-            cumulative.push(length);
-        }
+        let cumulative = distances_along(points);
+        let length = cumulative.last().copied().unwrap_or(0.0);
         let total = if curve.closed && !points.is_empty() {
             length + points[points.len() - 1].distance(points[0])
         } else {
@@ -347,15 +341,11 @@ fn nub_end(walk: &ArcWalk, i: usize, window: f64, mask: &Bitmap, stroke_width: f
         return None;
     }
     let axis = outward / length;
-    let ink = |p: Point| mask.get_signed(p.x.floor() as isize, p.y.floor() as isize);
-    if !ink(here) {
+    if !on_ink(mask, here) {
         return None;
     }
     let limit = MAX_NUB_REACH_IN_PEN_WIDTHS * stroke_width;
-    let mut run = 0.0;
-    while run <= limit && ink(here + axis * (run + INK_CHECK_STEP_PX)) {
-        run += INK_CHECK_STEP_PX;
-    }
+    let run = ink_run(mask, here, axis, limit);
     if run > limit || run < (0.5 + MIN_NUB_BEYOND_IN_PEN_WIDTHS) * stroke_width {
         return None;
     }
@@ -517,20 +507,11 @@ fn hairpin_end(walk: &ArcWalk, i: usize, mask: &Bitmap, stroke_width: f64) -> Op
     let (near_before, keep_before) = walk.at(i, -arm)?;
     let (_, keep_after) = walk.at(i, arm)?;
     let axis = axis_over(i, arm)?;
-    let ink = |p: Point| mask.get_signed(p.x.floor() as isize, p.y.floor() as isize);
-    if !ink(here) {
+    if !on_ink(mask, here) {
         return None;
     }
     let limit = MAX_HAIRPIN_REACH_IN_PEN_WIDTHS * stroke_width;
-    // How far the ink runs on from `from` going `way`, in steps, until it ends or the run
-    // passes `limit`.
-    let run = |from: Point, way: Vec2| {
-        let mut t = 0.0;
-        while t <= limit && ink(from + way * (t + INK_CHECK_STEP_PX)) {
-            t += INK_CHECK_STEP_PX;
-        }
-        t
-    };
+    let run = |from: Point, way: Vec2| ink_run(mask, from, way, limit);
     let inside = run(here, axis);
     if inside > limit {
         return None;
@@ -565,6 +546,21 @@ fn hairpin_end(walk: &ArcWalk, i: usize, mask: &Bitmap, stroke_width: f64) -> Op
         apex,
         far_corner,
     })
+}
+
+/// Whether `p` lies on an ink pixel of `mask`.
+fn on_ink(mask: &Bitmap, p: Point) -> bool {
+    mask.get_signed(p.x.floor() as isize, p.y.floor() as isize)
+}
+
+/// How far the ink of `mask` runs on from `from` going the unit `way`, in steps of
+/// [`INK_CHECK_STEP_PX`], until it ends or the run passes `limit`.
+fn ink_run(mask: &Bitmap, from: Point, way: Vec2, limit: f64) -> f64 {
+    let mut t = 0.0;
+    while t <= limit && on_ink(mask, from + way * (t + INK_CHECK_STEP_PX)) {
+        t += INK_CHECK_STEP_PX;
+    }
+    t
 }
 
 /// Lines whose angle's sine is below this are parallel: they would meet about a billion times
@@ -711,18 +707,14 @@ mod tests {
             .map(|k| left.lerp(vertex, k as f64 / 10.0))
             .collect();
         points.extend((0..=10).map(|k| vertex.lerp(right, k as f64 / 10.0)));
-        let mut mask = inked(&[left, vertex, right], 6.0, 80);
-        if nub {
-            let ink = inked(&[vertex, Point::new(30.0, 42.0)], 6.0, 80);
-            for y in 0..80 {
-                for x in 0..80 {
-                    if ink.get(x, y) {
-                        mask.set(x, y, true);
-                    }
-                }
-            }
-        }
-        (points, mask)
+        // The nub is inked out from the notch and back along the same line.
+        let nub_end = Point::new(30.0, 42.0);
+        let ink: &[Point] = if nub {
+            &[left, vertex, nub_end, vertex, right]
+        } else {
+            &[left, vertex, right]
+        };
+        (points, inked(ink, 6.0, 80))
     }
 
     #[test]
