@@ -493,15 +493,21 @@ mod tests {
     /// A square outline drawn with a 4-px pen, and a line 32 px long standing on its top side,
     /// inked `stem_ink` px wide; the crawl's two curves for them.
     fn square_with_stem(stem_ink: f64) -> (Vec<Polyline>, Bitmap) {
+        square_with_stem_drawn(4.0, 8.0, stem_ink)
+    }
+
+    /// A square outline drawn with a `pen`, and a line from the middle of its top side (y = 40)
+    /// up to y = `stem_top`, inked `stem_ink` px wide; the crawl's two curves for them.
+    fn square_with_stem_drawn(pen: f64, stem_top: f64, stem_ink: f64) -> (Vec<Polyline>, Bitmap) {
         let square = [
             Point::new(20.0, 40.0),
             Point::new(100.0, 40.0),
             Point::new(100.0, 110.0),
             Point::new(20.0, 110.0),
         ];
-        let stem = [Point::new(60.0, 40.0), Point::new(60.0, 8.0)];
+        let stem = [Point::new(60.0, 40.0), Point::new(60.0, stem_top)];
         let mut mask = Bitmap::new(120, 120);
-        ink(&mut mask, &square, true, 4.0);
+        ink(&mut mask, &square, true, pen);
         ink(&mut mask, &stem, false, stem_ink);
         let curves = vec![
             Polyline::new(sampled(&square, true), true),
@@ -534,23 +540,10 @@ mod tests {
 
     #[test]
     fn a_short_thick_spike_is_measured_from_a_pen_width_and_a_half_off_its_base() {
-        // A 6-px pen and a spike 20 px long (three and a third pen widths) whose sides merged
-        // into 9 px of ink: sampled every 4 px, two of its points lie farther than two pen
-        // widths from the base, too few to judge; three lie farther than one and a half.
-        let square = [
-            Point::new(20.0, 40.0),
-            Point::new(100.0, 40.0),
-            Point::new(100.0, 110.0),
-            Point::new(20.0, 110.0),
-        ];
-        let stem = [Point::new(60.0, 40.0), Point::new(60.0, 16.0)];
-        let mut mask = Bitmap::new(120, 120);
-        ink(&mut mask, &square, true, 6.0);
-        ink(&mut mask, &stem, false, 9.0);
-        let mut curves = vec![
-            Polyline::new(sampled(&square, true), true),
-            Polyline::new(sampled(&stem, false), false),
-        ];
+        // A 6-px pen and a spike 24 px long (four pen widths) whose sides merged into 9 px of
+        // ink, sampled every 4 px: past two pen widths from the base lie only two points that
+        // have a cross-section (the tip has none), too few to judge; past one and a half, three.
+        let (mut curves, mask) = square_with_stem_drawn(6.0, 16.0, 9.0);
         fold_collapsed_spikes(&mut curves, &mask, 6.0);
         assert_eq!(curves.len(), 1, "folded: {curves:?}");
     }
