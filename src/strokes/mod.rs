@@ -20,7 +20,7 @@ use kurbo::Point;
 use crate::geometry::Polyline;
 use crate::raster::bitmap::Bitmap;
 use graph::SkeletonGraph;
-use prune::CornerSpurs;
+use prune::{CornerSpurs, FacingEnds};
 
 pub use dots::{split_dots, Dot};
 pub(crate) use double::ink_width_across;
@@ -97,6 +97,10 @@ const SPUR_MAX_LENGTH_FLOOR_PX: f64 = 2.0;
 
 /// Pruning can expose a new spur (two spurs forking off one branch), hence a second round.
 const SPUR_PRUNING_ROUNDS: usize = 2;
+/// A spur that is the stem of a T is kept where its free end faces another stroke's free end
+/// within this many pen widths (a line going on across a pen lift): the gaps of a skip-stroke
+/// sketch are a few pen widths long.
+const FACING_END_REACH_IN_PEN_WIDTHS: f64 = 5.0;
 /// DECISION: two junctions joined by a branch no longer than this (pen widths) are one meeting
 /// point split by thinning: two curves touching, or two lines crossing at a slant, whose
 /// junctions lie about a pen width over the sine of the crossing angle apart (2.9 pen widths
@@ -154,7 +158,13 @@ pub fn extract_strokes_and_bands(
     );
     let spur_length = in_pixels(SPUR_MAX_LENGTH_IN_PEN_WIDTHS, SPUR_MAX_LENGTH_FLOOR_PX);
     for _ in 0..SPUR_PRUNING_ROUNDS {
-        graph.prune_spurs(spur_length);
+        graph.prune_spurs(
+            spur_length,
+            &FacingEnds {
+                reach: FACING_END_REACH_IN_PEN_WIDTHS * stroke_width,
+                direction_scale,
+            },
+        );
     }
     graph.merge_linked_junctions(in_pixels(
         LINK_MAX_LENGTH_IN_PEN_WIDTHS,
@@ -201,6 +211,40 @@ mod tests {
             };
             near(slope_a) || near(slope_b)
         })
+    }
+
+    /// A foot's end resting on the next leg: a horizontal line 3 px wide along y = 40, and a
+    /// stub 3 px wide standing on it at x = 50 up to y = `stub_top` (from 34, its skeleton a spur
+    /// shorter than a pen width); with `leg_above`, the leg's line goes on up from y = 31, beyond
+    /// a pen lift of 3 px above the stub.
+    fn stub_on_a_line(stub_top: f64, leg_above: bool) -> Vec<Stroke> {
+        strokes_of_ink(100, 60, 3.0, |px, py| {
+            let line = (py - 40.0).abs() <= 1.5 && (10.0..90.0).contains(&px);
+            let stub = (px - 50.0).abs() <= 1.5 && (stub_top..40.0).contains(&py);
+            let leg = leg_above && (px - 50.0).abs() <= 1.5 && (2.0..31.0).contains(&py);
+            line || stub || leg
+        })
+    }
+
+    /// Whether a stroke reaches up to `y` or above near x = 50, below the leg's end.
+    fn reaches_up_to(strokes: &[Stroke], y: f64) -> bool {
+        strokes.iter().any(|stroke| {
+            stroke
+                .line
+                .points
+                .iter()
+                .any(|p| (p.x - 50.0).abs() <= 1.5 && p.y <= y && p.y > 32.0)
+        })
+    }
+
+    #[test]
+    fn a_stub_on_a_line_that_faces_a_line_across_a_gap_is_kept() {
+        // Alone, the stub's spur is a bump of the line and goes.
+        let alone = stub_on_a_line(34.0, false);
+        assert!(!reaches_up_to(&alone, 38.0), "{alone:?}");
+        // Facing the leg's end 6 px on, straight up, it is the leg going on to the line.
+        let facing = stub_on_a_line(34.0, true);
+        assert!(reaches_up_to(&facing, 38.0), "{facing:?}");
     }
 
     #[test]
