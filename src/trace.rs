@@ -16,7 +16,9 @@ use crate::crawl::contacts::{
 use crate::crawl::crossings::{go_on_through_corners, pair_arms_straightest_first};
 use crate::crawl::outline_gaps::close_outline_gaps;
 use crate::crawl::slivers::open_slivers;
-use crate::crawl::spikes::{fold_collapsed_spikes, join_free_ends_to_spike_tips};
+use crate::crawl::spikes::{
+    close_curves_ending_at_a_protrusion_tip, fold_collapsed_spikes, join_free_ends_to_spike_tips,
+};
 use crate::crawl::strokes::{connect_measured, Connected, Method};
 use crate::crawl::tips::restore_tips;
 use crate::files::{open_regular_file, ReadError};
@@ -195,6 +197,10 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
         pair_arms_straightest_first(&mut curves, stroke_width);
         go_on_through_corners(&mut curves, typical_gap, stroke_width);
         open_slivers(&mut curves, stroke_width);
+        // The stages since the spikes were first folded can leave an outline that ends at a
+        // protrusion's tip, and, once it is closed, a collapsed spike hanging off it.
+        close_curves_ending_at_a_protrusion_tip(&mut curves, stroke_width);
+        fold_collapsed_spikes(&mut curves, &raster.mask, stroke_width);
         // The stages since the first check can leave a piece beside a path that covers it.
         drop_covered_open_curves(&mut curves, stroke_width);
         restore_tips(&mut curves, &raster.mask, stroke_width);
