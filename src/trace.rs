@@ -198,9 +198,10 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
         go_on_through_corners(&mut curves, typical_gap, stroke_width);
         open_slivers(&mut curves, stroke_width);
         // The stages since the spikes were first folded can leave an outline that ends at a
-        // protrusion's tip, and, once it is closed, a collapsed spike hanging off it.
-        close_curves_ending_at_a_protrusion_tip(&mut curves, stroke_width);
-        fold_collapsed_spikes(&mut curves, &raster.mask, stroke_width);
+        // protrusion's tip, and, once it is closed, collapsed spikes hanging off it.
+        if close_curves_ending_at_a_protrusion_tip(&mut curves, stroke_width) {
+            fold_collapsed_spikes(&mut curves, &raster.mask, stroke_width);
+        }
         // The stages since the first check can leave a piece beside a path that covers it.
         drop_covered_open_curves(&mut curves, stroke_width);
         restore_tips(&mut curves, &raster.mask, stroke_width);

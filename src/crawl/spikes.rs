@@ -98,19 +98,29 @@ pub fn fold_collapsed_spikes(curves: &mut Vec<Polyline>, mask: &Bitmap, stroke_w
     if hanging.is_empty() {
         return;
     }
-    let typical = match median_width(curves.iter(), mask, stroke_width) {
-        Some(w) if w > 0.0 => w,
-        _ => return,
+    // Which hanging curves are short beside their outline, judged before any is folded in; the
+    // page's stroke (measured along every curve: a page of noise has a million points) only
+    // where another one must be judged by its ink.
+    let short: Vec<bool> = hanging
+        .iter()
+        .map(|&(i, c, _)| {
+            polyline_length(&curves[i].points, false)
+                <= PROTRUSION_MAX_SHARE_OF_OUTLINE * diagonal(&curves[c].points)
+        })
+        .collect();
+    let typical = if short.iter().all(|&s| s) {
+        None
+    } else {
+        median_width(curves.iter(), mask, stroke_width).filter(|&w| w > 0.0)
     };
     let mut folded = vec![false; curves.len()];
-    for (i, c, base_first) in hanging {
+    for ((i, c, base_first), short) in hanging.into_iter().zip(short) {
         let mut spike = curves[i].points.clone();
         if !base_first {
             spike.reverse();
         }
-        let short = polyline_length(&spike, false)
-            <= PROTRUSION_MAX_SHARE_OF_OUTLINE * diagonal(&curves[c].points);
-        if !short && !ink_is_double(&spike, mask, stroke_width, typical) {
+        let double = || typical.is_some_and(|t| ink_is_double(&spike, mask, stroke_width, t));
+        if !short && !double() {
             continue;
         }
         let outline = &mut curves[c].points;
@@ -137,11 +147,12 @@ const ON_ITSELF_IN_PEN_WIDTHS: f64 = 1.5;
 /// way back is the same line: the curve is closed from the tip back along the protrusion to its
 /// base and on to its other end. A protrusion is no longer than
 /// [`PROTRUSION_MAX_SHARE_OF_OUTLINE`] of the curve's size, as a hanging one
-/// ([`fold_collapsed_spikes`]).
-pub fn close_curves_ending_at_a_protrusion_tip(curves: &mut [Polyline], stroke_width: f64) {
+/// ([`fold_collapsed_spikes`]). Returns whether any curve was closed.
+pub fn close_curves_ending_at_a_protrusion_tip(curves: &mut [Polyline], stroke_width: f64) -> bool {
     if stroke_width <= 0.0 {
-        return;
+        return false;
     }
+    let mut any = false;
     let on_itself = ON_ITSELF_IN_PEN_WIDTHS * stroke_width;
     for curve in curves.iter_mut() {
         if curve.closed || curve.points.len() < 4 {
@@ -164,10 +175,12 @@ pub fn close_curves_ending_at_a_protrusion_tip(curves: &mut [Polyline], stroke_w
                 );
                 points.dedup();
                 *curve = Polyline::new(points, true);
+                any = true;
                 break;
             }
         }
     }
+    any
 }
 
 /// For an open curve through `points` whose first point stops on the curve itself at its
