@@ -16,7 +16,7 @@ use std::collections::HashMap;
 use super::remove_marked;
 use crate::geometry::grid::PointGrid;
 use crate::geometry::polyline::{
-    distance_to_segment, nearest_point_index, polyline_length, Polyline,
+    distance_to_segment, distances_along, nearest_point_index, polyline_length, Polyline,
 };
 use crate::raster::bitmap::Bitmap;
 use crate::strokes::ink_width_across;
@@ -191,7 +191,7 @@ pub fn close_curves_ending_at_a_protrusion_tip(curves: &mut [Polyline], stroke_w
 fn protrusion_base(points: &[Point], on_itself: f64, max_protrusion: f64) -> Option<usize> {
     let n = points.len();
     let start = points[0];
-    let along = cumulative_lengths(points);
+    let along = distances_along(points);
     let total = along[n - 1];
     // Where the first point stops on the curve: its nearest point away from it along the curve.
     let (distance, base) = (1..n - 1)
@@ -201,19 +201,6 @@ fn protrusion_base(points: &[Point], on_itself: f64, max_protrusion: f64) -> Opt
     let protrusion = total - along[base];
     let tip_out = points[n - 1].distance(points[base]);
     (distance <= on_itself && protrusion <= max_protrusion && tip_out > on_itself).then_some(base)
-}
-
-/// The length along `points` up to each point.
-fn cumulative_lengths(points: &[Point]) -> Vec<f64> {
-    let mut along = Vec::with_capacity(points.len());
-    let mut total = 0.0;
-    for (k, &p) in points.iter().enumerate() {
-        if k > 0 {
-            total += points[k - 1].distance(p);
-        }
-        along.push(total);
-    }
-    along
 }
 
 /// Whether the ink along a hanging curve (`spike`, its base first) is two sides merged: its
