@@ -18,7 +18,7 @@ use std::collections::HashMap;
 
 use super::remove_marked;
 use crate::geometry::grid::PointGrid;
-use crate::geometry::polyline::{distance_to_segment, nearest_point_index, Polyline};
+use crate::geometry::polyline::{bounding_box, distance_to_segment, nearest_point_index, Polyline};
 use crate::raster::bitmap::Bitmap;
 
 /// A closed curve and an open curve touch where a point of one lies within this much (pen
@@ -66,7 +66,7 @@ pub fn join_touching_loops(curves: &mut Vec<Polyline>, mask: &Bitmap, stroke_wid
     }
     let boxes: Vec<Rect> = closed
         .iter()
-        .map(|&c| bounds(&curves[c].points).inflate(reach, reach))
+        .map(|&c| bounding_box(&curves[c].points).inflate(reach, reach))
         .collect();
     // Smallest first (ties by position in the list, for byte-identical output).
     let mut order: Vec<usize> = (0..closed.len()).collect();
@@ -297,7 +297,7 @@ pub fn splice_loops_into_bridges(
     let mut boxes: Vec<Rect> = curves
         .iter()
         .map(|curve| match curve.points.first() {
-            Some(_) => bounds(&curve.points),
+            Some(_) => bounding_box(&curve.points),
             None => Rect::ZERO,
         })
         .collect();
@@ -483,15 +483,6 @@ fn ink_between(mask: &Bitmap, a: Point, b: Point) -> bool {
         let p = a.lerp(b, k as f64 / steps as f64);
         mask.get_signed(p.x.floor() as isize, p.y.floor() as isize)
     })
-}
-
-/// The bounding box of `points` (at least one).
-fn bounds(points: &[Point]) -> Rect {
-    points
-        .iter()
-        .fold(Rect::from_points(points[0], points[0]), |r, &p| {
-            r.union_pt(p)
-        })
 }
 
 /// An open curve's end lies on a closed curve where it is within this much (pen widths) of one

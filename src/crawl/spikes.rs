@@ -6,8 +6,8 @@
 //! and the outline goes out along it and back (issue 9, "a double strand that ends is a
 //! U-turn"); an open outline that ends at such a protrusion's tip, its other end at the
 //! protrusion's base, comes back along it and is closed; and a free end near the root of a
-//! curve's collapsed end goes on to its tip. The paper (Parakkat & Muthuganapathy 2016) has no notion of ink width; these
-//! rules are ours.
+//! curve's collapsed end goes on to its tip. The paper (Parakkat & Muthuganapathy 2016) has no
+//! notion of ink width; these rules are ours.
 
 use kurbo::{Line, Point, Vec2};
 
@@ -16,7 +16,8 @@ use std::collections::HashMap;
 use super::remove_marked;
 use crate::geometry::grid::PointGrid;
 use crate::geometry::polyline::{
-    distance_to_segment, distances_along, nearest_point_index, polyline_length, Polyline,
+    bounding_box, distance_to_segment, distances_along, nearest_point_index, polyline_length,
+    Polyline,
 };
 use crate::raster::bitmap::Bitmap;
 use crate::strokes::ink_width_across;
@@ -119,8 +120,7 @@ pub fn fold_collapsed_spikes(curves: &mut Vec<Polyline>, mask: &Bitmap, stroke_w
         if !base_first {
             spike.reverse();
         }
-        let double = || typical.is_some_and(|t| ink_is_double(&spike, mask, stroke_width, t));
-        if !short && !double() {
+        if !short && !typical.is_some_and(|t| ink_is_double(&spike, mask, stroke_width, t)) {
             continue;
         }
         let outline = &mut curves[c].points;
@@ -165,28 +165,32 @@ pub fn close_curves_ending_at_a_protrusion_tip(curves: &mut [Polyline], stroke_w
             continue;
         }
         let max_protrusion = PROTRUSION_MAX_SHARE_OF_OUTLINE * diagonal(&curve.points);
-        for tip_last in [true, false] {
-            let mut points = curve.points.clone();
-            if !tip_last {
-                points.reverse();
-            }
-            if let Some(base) = protrusion_base(&points, on_itself, max_protrusion) {
-                let n = points.len();
-                points.extend(
-                    points[base..n - 1]
-                        .iter()
-                        .rev()
-                        .copied()
-                        .collect::<Vec<_>>(),
-                );
-                points.dedup();
-                *curve = Polyline::new(points, true);
-                any = true;
-                break;
-            }
+        // The tip at the curve's last point, or at its first.
+        let closing = closed_back_along_protrusion(&curve.points, on_itself, max_protrusion)
+            .or_else(|| {
+                let reversed: Vec<Point> = curve.points.iter().rev().copied().collect();
+                closed_back_along_protrusion(&reversed, on_itself, max_protrusion)
+            });
+        if let Some(points) = closing {
+            *curve = Polyline::new(points, true);
+            any = true;
         }
     }
     any
+}
+
+/// The points of the open curve `points` closed from its last point, a protrusion's tip, back
+/// along the protrusion to its base ([`protrusion_base`]); none where it ends otherwise.
+fn closed_back_along_protrusion(
+    points: &[Point],
+    on_itself: f64,
+    max_protrusion: f64,
+) -> Option<Vec<Point>> {
+    let base = protrusion_base(points, on_itself, max_protrusion)?;
+    let mut closed = points.to_vec();
+    closed.extend(points[base..points.len() - 1].iter().rev());
+    closed.dedup();
+    Some(closed)
 }
 
 /// For an open curve through `points` whose first point stops on the curve itself at its
@@ -223,11 +227,7 @@ fn ink_is_double(spike: &[Point], mask: &Bitmap, stroke_width: f64, typical: f64
 
 /// The diagonal of the bounding box of `points` (at least one): the size of a closed curve.
 fn diagonal(points: &[Point]) -> f64 {
-    let box_of = points
-        .iter()
-        .fold(kurbo::Rect::from_points(points[0], points[0]), |r, &p| {
-            r.union_pt(p)
-        });
+    let box_of = bounding_box(points);
     box_of.width().hypot(box_of.height())
 }
 

@@ -2,7 +2,7 @@
 //! simplification (U. Ramer, Computer Graphics and Image Processing 1(3), 1972; D. Douglas and
 //! T. Peucker, The Canadian Cartographer 10(2), 1973) and resampling at a spacing.
 
-use kurbo::{Point, Vec2};
+use kurbo::{Point, Rect, Vec2};
 
 /// An ordered chain of points; a closed one joins its last point back to its first, which it does
 /// not repeat.
@@ -51,6 +51,15 @@ pub fn signed_area(points: &[Point]) -> f64 {
             a.x * b.y - b.x * a.y
         })
         .sum()
+}
+
+/// The bounding box of `points` (at least one).
+pub(crate) fn bounding_box(points: &[Point]) -> Rect {
+    points
+        .iter()
+        .fold(Rect::from_points(points[0], points[0]), |r, &p| {
+            r.union_pt(p)
+        })
 }
 
 /// The distance along the chain `points` from its first point to each of its points (0 for the

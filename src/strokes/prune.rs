@@ -224,15 +224,10 @@ impl SkeletonGraph {
             })
             .collect();
         spurs.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-        // The free ends by position, for the spurs that face one across a gap.
-        let mut free_ends = PointGrid::new(facing.reach.max(1.0));
-        if !spurs.is_empty() {
-            for (node, at) in self.nodes.iter().enumerate() {
-                if at.ends.len() == 1 {
-                    free_ends.insert(at.position, node);
-                }
-            }
-        }
+        // The free ends by position, for the spurs that face one across a gap: made when the
+        // first T's stem needs them (a removed spur's free end has no branch left and is passed
+        // over, so the grid made once stays true).
+        let mut free_ends: Option<PointGrid<usize>> = None;
         for (_, branch) in spurs {
             let (a, z) = self.branches[branch].nodes.expect("spurs have nodes");
             // An earlier removal may have turned the junction into a pass-through: keep it then.
@@ -253,13 +248,25 @@ impl SkeletonGraph {
             // kept spur; the reach is the same from 4 to 7 pen widths (at 3 the seed 7 animal
             // is not gained), the angle best at 30° (20°: the meander not gained; 45°: a thick
             // meander lost).
-            if self.is_stem_of_a_t(branch, junction, facing.direction_scale)
-                && self.faces_a_free_end(branch, free, &free_ends, facing)
-            {
-                continue;
+            if self.is_stem_of_a_t(branch, junction, facing.direction_scale) {
+                let free_ends = free_ends.get_or_insert_with(|| self.free_ends_grid(facing.reach));
+                if self.faces_a_free_end(branch, free, free_ends, facing) {
+                    continue;
+                }
             }
             self.remove_branch(branch);
         }
+    }
+
+    /// The free ends' nodes by position, in cells `reach` wide (at least a pixel).
+    fn free_ends_grid(&self, reach: f64) -> PointGrid<usize> {
+        let mut grid = PointGrid::new(reach.max(1.0));
+        for (node, at) in self.nodes.iter().enumerate() {
+            if at.ends.len() == 1 {
+                grid.insert(at.position, node);
+            }
+        }
+        grid
     }
 
     /// Whether `branch` is the stem of a T at `junction`: the junction's two other branches
