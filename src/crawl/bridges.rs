@@ -1510,18 +1510,17 @@ fn bridge_candidates(
             // and 5 +1 each (two thin lassos), none lost, validation and seed 4 unchanged. The
             // typical gap is still measured on the bridges' whole length: counted there too, it
             // moved on a scanned page of spikes and lost one (seed 7).
+            // How much of `path` runs along either end's band partner.
+            let mut along_partners = |path: [Point; 3]| {
+                [band_partner_of(&a), band_partner_of(&b)]
+                    .into_iter()
+                    .flatten()
+                    .map(|stroke| segments.along(vertices, stroke, path, stroke_width))
+                    .fold(0.0, f64::max)
+            };
             let alongside = match shape.corner {
-                None => {
-                    let into_junction =
-                        into_junction_ink(vertices, &junction_strokes, &a, &b, stroke_width);
-                    let path = [a.at, a.at.midpoint(b.at), b.at];
-                    let mut along_partner = |end: &BridgeableEnd| {
-                        band_partner_of(end).map_or(0.0, |stroke| {
-                            segments.along(vertices, stroke, path, stroke_width)
-                        })
-                    };
-                    into_junction.max(along_partner(&a)).max(along_partner(&b))
-                }
+                None => into_junction_ink(vertices, &junction_strokes, &a, &b, stroke_width)
+                    .max(along_partners([a.at, a.at.midpoint(b.at), b.at])),
                 Some(corner) => {
                     let corner = shape.judged_corner.unwrap_or(corner);
                     let path = [a.at, corner, b.at];
@@ -1531,12 +1530,7 @@ fn bridge_candidates(
                     if path[0].distance(corner) + corner.distance(path[2]) <= 2.0 * stroke_width {
                         staggered
                     } else {
-                        let mut along_partner = |end: &BridgeableEnd| {
-                            band_partner_of(end).map_or(0.0, |stroke| {
-                                segments.along(vertices, stroke, path, stroke_width)
-                            })
-                        };
-                        staggered.max(along_partner(&a)).max(along_partner(&b))
+                        staggered.max(along_partners(path))
                     }
                 }
             };

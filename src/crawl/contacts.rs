@@ -18,7 +18,9 @@ use std::collections::HashMap;
 
 use super::remove_marked;
 use crate::geometry::grid::PointGrid;
-use crate::geometry::polyline::{bounding_box, distance_to_segment, nearest_point_index, Polyline};
+use crate::geometry::polyline::{
+    bounding_box, distance_to_segment, nearest_point_index, within_of_chain, Polyline,
+};
 use crate::raster::bitmap::Bitmap;
 
 /// A closed curve and an open curve touch where a point of one lies within this much (pen
@@ -228,10 +230,9 @@ pub fn join_loops_to_open_curves(curves: &mut Vec<Polyline>, mask: &Bitmap, stro
 }
 
 /// DECISION: (stop 55) two open curves, one ending on a closed curve and the other ending beside
-/// it there (both ends within [`END_ON_CURVE_IN_PEN_WIDTHS`] of each other on the loop, or the
-/// second's end that near the first's line), that run together back from those ends for this
-/// many pen widths (every point of the second within the same reach of the first: a band's two
-/// sides lie up to two pen widths apart) are a lasso's two ropes: one line out along one rope,
+/// it (within [`END_ON_CURVE_IN_PEN_WIDTHS`] of its line, at the loop or further up it), that run
+/// together back from there for this many pen widths (every point of the second within the same
+/// reach of the first: a band's two sides lie up to two pen widths apart) are a lasso's two ropes: one line out along one rope,
 /// once round the loop and back along the other, whose two strands merged in the neck. The crawl
 /// closed a thin lasso's loop on its own and left each rope ending at it, the one rope's end 12 px
 /// up the merged neck, as a balloon's string ends on its balloon (one string stays a curve of its
@@ -250,11 +251,6 @@ pub fn join_lassos(curves: &mut Vec<Polyline>, stroke_width: f64) {
     }
     let on_curve = END_ON_CURVE_IN_PEN_WIDTHS * stroke_width;
     let together = LASSO_ROPES_TOGETHER_IN_PEN_WIDTHS * stroke_width;
-    let near = |p: Point, points: &[Point], within: f64| {
-        points
-            .windows(2)
-            .any(|pair| distance_to_segment(p, kurbo::Line::new(pair[0], pair[1])) <= within)
-    };
     let loops: Vec<usize> = (0..curves.len())
         .filter(|&c| curves[c].closed && curves[c].points.len() >= 3)
         .collect();
@@ -287,7 +283,6 @@ pub fn join_lassos(curves: &mut Vec<Polyline>, stroke_width: f64) {
         ends_on_loop.sort_unstable();
         let mut found = None;
         'pairs: for &(a, a_start) in &ends_on_loop {
-            let a_end = end_point(&curves[a], a_start);
             // The ends beside the first rope, anywhere along it.
             let mut beside: Vec<(usize, bool)> = Vec::new();
             for p in &curves[a].points {
@@ -299,16 +294,14 @@ pub fn join_lassos(curves: &mut Vec<Polyline>, stroke_width: f64) {
             }
             beside.sort_unstable();
             for (c, c_start) in beside {
-                let end = end_point(&curves[c], c_start);
-                // Together at the loop: both end on it near each other, or this one ends on
-                // the first rope's line.
-                let at_loop =
-                    ends_on_loop.contains(&(c, c_start)) && end.distance(a_end) <= on_curve;
-                if !at_loop && !near(end, &curves[a].points, on_curve) {
-                    continue;
-                }
+                // Its end (the first point run back over) on the first rope's line, and the
+                // rope running together with it back from there.
                 let back = run_back(&curves[c], c_start, together);
-                if back.len() >= 2 && back.iter().all(|&p| near(p, &curves[a].points, on_curve)) {
+                if back.len() >= 2
+                    && back
+                        .iter()
+                        .all(|&p| within_of_chain(p, &curves[a].points, on_curve))
+                {
                     found = Some((a, a_start, c, c_start));
                     break 'pairs;
                 }
@@ -352,14 +345,11 @@ fn end_point(curve: &Polyline, at_start: bool) -> Point {
 
 /// The points of `curve` from its start (or end) back along it for `length`.
 fn run_back(curve: &Polyline, at_start: bool, length: f64) -> Vec<Point> {
+    let n = curve.points.len();
     let mut points: Vec<Point> = Vec::new();
     let mut walked = 0.0;
-    let ordered: Box<dyn Iterator<Item = &Point>> = if at_start {
-        Box::new(curve.points.iter())
-    } else {
-        Box::new(curve.points.iter().rev())
-    };
-    for &p in ordered {
+    for k in 0..n {
+        let p = curve.points[if at_start { k } else { n - 1 - k }];
         if let Some(&last) = points.last() {
             walked += last.distance(p);
             if walked > length {

@@ -15,9 +15,7 @@ use std::collections::BTreeMap;
 
 use super::bridges::BRIDGE_MAX_IN_TYPICAL_GAPS;
 use crate::geometry::grid::PointGrid;
-use crate::geometry::polyline::{
-    distance_to_segment, lines_meet, point_along, signed_turn, Polyline,
-};
+use crate::geometry::polyline::{lines_meet, point_along, signed_turn, within_of_chain, Polyline};
 
 /// Two curves meet at a point where a vertex of one lies within this much (pen widths) of a
 /// vertex of the other: both passed the same junction of the ink.
@@ -185,10 +183,11 @@ pub fn go_on_through_corners(curves: &mut Vec<Polyline>, typical_gap: f64, strok
             let to_arm_end = arm_end - e;
             let corner_point = curves[p].points[k];
             let along_arm = |t: f64| {
-                let at = corner_point.lerp(arm_end, t);
-                curves[p].points.windows(2).any(|pair| {
-                    distance_to_segment(at, kurbo::Line::new(pair[0], pair[1])) <= stroke_width
-                })
+                within_of_chain(
+                    corner_point.lerp(arm_end, t),
+                    &curves[p].points,
+                    stroke_width,
+                )
             };
             let steps = corner_point.distance(arm_end).ceil().max(1.0) as usize;
             let comes_back = |inward: Vec2| {

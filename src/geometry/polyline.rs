@@ -53,6 +53,13 @@ pub fn signed_area(points: &[Point]) -> f64 {
         .sum()
 }
 
+/// Whether `p` lies within `reach` of the chain `points` (of its segments, not only its points).
+pub(crate) fn within_of_chain(p: Point, points: &[Point], reach: f64) -> bool {
+    points
+        .windows(2)
+        .any(|pair| distance_to_segment(p, kurbo::Line::new(pair[0], pair[1])) <= reach)
+}
+
 /// The bounding box of `points` (at least one).
 pub(crate) fn bounding_box(points: &[Point]) -> Rect {
     points
