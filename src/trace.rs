@@ -17,7 +17,8 @@ use crate::crawl::crossings::{go_on_through_corners, pair_arms_straightest_first
 use crate::crawl::outline_gaps::close_outline_gaps;
 use crate::crawl::slivers::open_slivers;
 use crate::crawl::spikes::{
-    close_curves_ending_at_a_protrusion_tip, fold_collapsed_spikes, join_free_ends_to_spike_tips,
+    close_curves_ending_at_a_protrusion_tip, fold_collapsed_necks, fold_collapsed_spikes,
+    join_free_ends_to_spike_tips,
 };
 use crate::crawl::strokes::{connect_measured, Connected, Method};
 use crate::crawl::tips::restore_tips;
@@ -185,6 +186,7 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
     // Only the stroke-aware crawl bridges gaps (and measures their typical size); the stages after
     // it are its own, the point-set crawls' curves are left as they are.
     if let Some(typical_gap) = typical_gap {
+        fold_collapsed_necks(&mut curves, &raster.mask, stroke_width);
         fold_collapsed_spikes(&mut curves, &raster.mask, stroke_width);
         join_free_ends_to_spike_tips(&mut curves, &raster.mask, stroke_width);
         join_touching_loops(&mut curves, &raster.mask, stroke_width);
