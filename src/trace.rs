@@ -14,7 +14,7 @@ use crate::crawl::contacts::{
     join_touching_loops, splice_loops_into_bridges,
 };
 use crate::crawl::crossings::{go_on_through_corners, pair_arms_straightest_first};
-use crate::crawl::outline_gaps::close_outline_gaps;
+use crate::crawl::outline_gaps::{close_outline_gaps, close_outline_gaps_across_ink};
 use crate::crawl::slivers::open_slivers;
 use crate::crawl::spikes::{
     close_curves_ending_at_a_protrusion_tip, fold_collapsed_necks, fold_collapsed_spikes,
@@ -205,6 +205,7 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
         if close_curves_ending_at_a_protrusion_tip(&mut curves, stroke_width) {
             fold_collapsed_spikes(&mut curves, &raster.mask, stroke_width);
         }
+        close_outline_gaps_across_ink(&mut curves, &raster.mask, stroke_width, typical_gap);
         // The stages since the first check can leave a piece beside a path that covers it.
         drop_covered_open_curves(&mut curves, stroke_width);
         restore_tips(&mut curves, &raster.mask, stroke_width);
