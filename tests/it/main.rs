@@ -18,6 +18,7 @@ mod support;
 
 mod batch_engine;
 mod bench_generator;
+mod bench_regressions;
 mod bench_scoring;
 mod cli_batch;
 mod cli_export;

@@ -1,0 +1,70 @@
+//! Development drawings of the benchmark (`examples/make_bench`) that a reconstruction rule was
+//! made for trace exactly: generated in memory, traced with the defaults and scored as
+//! `bench_score` scores them. Each names the rule it stands for; only development seeds appear
+//! here (seed 2 is the validation split and seed 4 is held out, docs/benchmark.md).
+
+use super::bench_generator::{drawing, families};
+use crate::support;
+use crawltrace::stages::decode::decode_image;
+use crawltrace::{to_svg, trace, TraceOptions};
+use support::bench::{load_bench_truth, score_drawing};
+
+/// Generates drawing `index` of `family` in `style` on development seed `seed`, traces it and
+/// scores it; panics with the failures where it is not exact.
+fn assert_traces_exactly(seed: u64, family: &str, style: &str, index: usize) {
+    let family_index = families::FAMILIES
+        .iter()
+        .position(|f| f.name == family)
+        .unwrap_or_else(|| panic!("no family {family}"));
+    let style_index = families::STYLES
+        .iter()
+        .position(|s| s.name() == style)
+        .unwrap_or_else(|| panic!("no style {style}"));
+    let generated = drawing::generate(
+        family_index,
+        families::STYLES[style_index],
+        style_index,
+        index,
+        seed,
+    );
+    let truth = load_bench_truth(&generated.truth).expect("the truth reads");
+    let picture = decode_image(&generated.image).expect("the drawing decodes");
+    let traced = trace(&picture, &TraceOptions::default()).expect("the drawing traces");
+    let output = support::load_curves(&to_svg(&traced.drawing));
+    let score = score_drawing(&truth, &output);
+    assert!(
+        score.exact(),
+        "seed {seed} {}: {:?}",
+        generated.name,
+        score.kinds()
+    );
+}
+
+/// A thin dumbbell whose neck's two sides merged into a ladder of skeleton: the neck, an open
+/// curve between the two balls, is folded into one outline (stop 56, `fold_collapsed_necks`).
+#[test]
+fn a_thin_dumbbells_merged_neck_joins_its_two_balls() {
+    assert_traces_exactly(1, "dumbbell", "thin", 4);
+}
+
+/// A thin dumbbell whose neck is a closed sliver of its own takes in a ball at each end (stop
+/// 56, band tips joined pass after pass).
+#[test]
+fn a_thin_dumbbells_sliver_neck_takes_in_both_balls() {
+    assert_traces_exactly(3, "dumbbell", "thin", 2);
+}
+
+/// A thin dumbbell traced as one open curve ending along one side of its merged neck closes
+/// across the ink between its ends (stop 56, `close_outline_gaps_across_ink`).
+#[test]
+fn an_outline_open_along_a_merged_neck_closes_across_its_ink() {
+    assert_traces_exactly(6, "dumbbell", "thin", 0);
+}
+
+/// Thin animals, an arch and meanders whose outline was closed across a gap after the loops
+/// that touch were joined: they are joined again (stop 56).
+#[test]
+fn loops_that_touch_once_an_outline_is_closed_are_joined() {
+    assert_traces_exactly(6, "animals", "thin", 4);
+    assert_traces_exactly(8, "meanders", "thin", 1);
+}
