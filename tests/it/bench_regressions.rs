@@ -54,6 +54,13 @@ fn a_thin_dumbbells_sliver_neck_takes_in_both_balls() {
     assert_traces_exactly(3, "dumbbell", "thin", 2);
 }
 
+/// A thin dumbbell whose neck's band tip stands on its second ball only once the outlines are
+/// closed: the band tips are joined again at the end (stop 56).
+#[test]
+fn a_neck_tip_that_stands_on_a_ball_late_takes_it_in() {
+    assert_traces_exactly(1, "dumbbell", "thin", 5);
+}
+
 /// A thin dumbbell traced as one open curve ending along one side of its merged neck closes
 /// across the ink between its ends (stop 56, `close_outline_gaps_across_ink`).
 #[test]
