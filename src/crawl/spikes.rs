@@ -4,9 +4,10 @@
 //! it is short beside the outline it stands on (a quarter of its size or less: a spike, an ear, a
 //! toe, where a string or a stem is about as long as its shape), it is two sides of the outline,
 //! and the outline goes out along it and back (issue 9, "a double strand that ends is a
-//! U-turn"); an open outline that ends at such a protrusion's tip, its other end at the
-//! protrusion's base, comes back along it and is closed; and a free end near the root of a
-//! curve's collapsed end goes on to its tip. The paper (Parakkat & Muthuganapathy 2016) has no
+//! U-turn"); so is a neck whose two sides merged between two closed outlines, out along it,
+//! round the far one and back (stop 56); an open outline that ends at such a protrusion's tip,
+//! its other end at the protrusion's base, comes back along it and is closed; and a free end near
+//! the root of a curve's collapsed end goes on to its tip. The paper (Parakkat & Muthuganapathy 2016) has no
 //! notion of ink width; these rules are ours.
 
 use kurbo::{Line, Point, Vec2};
@@ -229,14 +230,22 @@ fn neck_ink_is_double(neck: &[Point], mask: &Bitmap, stroke_width: f64, typical:
     widths.len() >= MIN_MEASURED_POINTS && median(widths) >= SPIKE_WIDTH_RATIO * typical
 }
 
+/// A neck's ink is looked for this far (pen widths) to each side of its centre line: its two
+/// sides lie up to two pen widths apart centre to centre, and the far side's ink reaches half a
+/// pen width beyond its centre.
+const NECK_INK_REACH_IN_PEN_WIDTHS: f64 = 2.5;
+
+/// The step (pixels) at which the ink across a neck is sampled.
+const NECK_INK_STEP_PX: f64 = 0.25;
+
 /// The width of the ink across `point` along `normal`, from its farthest ink on one side to its
-/// farthest on the other, within 2.5 pen widths, across gaps of paper up to a pen width wide
-/// (two lines drawn side by side, their ink merged in places); nothing where no ink lies within
-/// half a pen width of `point`.
+/// farthest on the other, within [`NECK_INK_REACH_IN_PEN_WIDTHS`], across gaps of paper up to a
+/// pen width wide (two lines drawn side by side, their ink merged in places); nothing where no
+/// ink lies within half a pen width of `point`.
 fn ink_extent_across(mask: &Bitmap, point: Point, normal: Vec2, stroke_width: f64) -> f64 {
-    const STEP_PX: f64 = 0.25;
+    const STEP_PX: f64 = NECK_INK_STEP_PX;
     let ink = |q: Point| mask.get_signed(q.x.floor() as isize, q.y.floor() as isize);
-    let reach = 2.5 * stroke_width;
+    let reach = NECK_INK_REACH_IN_PEN_WIDTHS * stroke_width;
     let mut farthest = [None, None];
     for (side, sign) in [1.0, -1.0].into_iter().enumerate() {
         let mut t = 0.0;
