@@ -606,7 +606,7 @@ fn splice_at_contact(curves: &mut [Polyline], small: usize, contact: &Contact) {
 }
 
 /// A closed curve's points once round from point `at` back to it.
-fn once_round(points: &[Point], at: usize) -> Vec<Point> {
+pub(super) fn once_round(points: &[Point], at: usize) -> Vec<Point> {
     points[at..].iter().chain(&points[..=at]).copied().collect()
 }
 

@@ -14,6 +14,7 @@ use kurbo::{Line, Point, Vec2};
 
 use std::collections::HashMap;
 
+use super::contacts::once_round;
 use super::remove_marked;
 use crate::geometry::grid::PointGrid;
 use crate::geometry::polyline::{
@@ -197,7 +198,7 @@ pub fn fold_collapsed_necks(curves: &mut Vec<Polyline>, mask: &Bitmap, stroke_wi
         let far = &curves[b].points;
         let at_far = nearest_point_index(far, neck[neck.len() - 1]).unwrap_or(0);
         let mut excursion = neck.clone();
-        excursion.extend(far[at_far..].iter().chain(&far[..=at_far]));
+        excursion.extend(once_round(far, at_far));
         excursion.extend(neck.iter().rev());
         let near = &mut curves[a].points;
         let at_near = nearest_point_index(near, neck[0]).unwrap_or(0);
@@ -215,19 +216,14 @@ pub fn fold_collapsed_necks(curves: &mut Vec<Polyline>, mask: &Bitmap, stroke_wi
 fn neck_ink_is_double(neck: &[Point], mask: &Bitmap, stroke_width: f64, typical: f64) -> bool {
     let clearance = BASE_CLEARANCE_IN_PEN_WIDTHS * stroke_width;
     let (first, last) = (neck[0], neck[neck.len() - 1]);
-    let widths: Vec<f64> = (1..neck.len().saturating_sub(1))
+    let widths: Vec<f64> = (0..neck.len())
         .filter(|&k| neck[k].distance(first) > clearance && neck[k].distance(last) > clearance)
         .filter_map(|k| {
-            let along = neck[k + 1] - neck[k - 1];
-            let length = along.hypot();
-            (length > 0.0).then(|| {
-                let normal = Vec2::new(-along.y / length, along.x / length);
-                ink_extent_across(mask, neck[k], normal, stroke_width)
-            })
+            let width = ink_extent_across(mask, neck[k], normal_at(neck, k)?, stroke_width);
+            (width > 0.0).then_some(width)
         })
-        .filter(|&w| w > 0.0)
         .collect();
-    widths.len() >= MIN_MEASURED_POINTS && median(widths) >= SPIKE_WIDTH_RATIO * typical
+    wider_than_a_stroke(widths, typical)
 }
 
 /// A neck's ink is looked for this far (pen widths) to each side of its centre line: its two
@@ -353,6 +349,12 @@ fn ink_is_double(spike: &[Point], mask: &Bitmap, stroke_width: f64, typical: f64
         .filter(|&k| spike[k].distance(spike[0]) > clearance)
         .filter_map(|k| width_at(spike, k, mask, stroke_width))
         .collect();
+    wider_than_a_stroke(widths, typical)
+}
+
+/// Whether ink measured `widths` across at [`MIN_MEASURED_POINTS`] points at least is two sides
+/// merged: their median at least [`SPIKE_WIDTH_RATIO`] times the page's stroke (`typical`).
+fn wider_than_a_stroke(widths: Vec<f64>, typical: f64) -> bool {
     widths.len() >= MIN_MEASURED_POINTS && median(widths) >= SPIKE_WIDTH_RATIO * typical
 }
 
@@ -696,17 +698,19 @@ fn median(mut values: Vec<f64>) -> f64 {
 /// The width of ink across `points[k]`, square to the chord between its neighbours; none at an
 /// end or off the ink.
 fn width_at(points: &[Point], k: usize, mask: &Bitmap, stroke_width: f64) -> Option<f64> {
+    let width = ink_width_across(mask, points[k], normal_at(points, k)?, stroke_width);
+    (width > 0.0).then_some(width)
+}
+
+/// The unit normal at `points[k]`, square to the chord between its neighbours; none at an end
+/// or where the neighbours coincide.
+fn normal_at(points: &[Point], k: usize) -> Option<Vec2> {
     if k == 0 || k + 1 >= points.len() {
         return None;
     }
     let along = points[k + 1] - points[k - 1];
     let length = along.hypot();
-    if length == 0.0 {
-        return None;
-    }
-    let normal = Vec2::new(-along.y / length, along.x / length);
-    let width = ink_width_across(mask, points[k], normal, stroke_width);
-    (width > 0.0).then_some(width)
+    (length > 0.0).then(|| Vec2::new(-along.y / length, along.x / length))
 }
 
 #[cfg(test)]
