@@ -22,6 +22,7 @@ use crate::crawl::spikes::{
 };
 use crate::crawl::strokes::{connect_measured, Connected, Method};
 use crate::crawl::tips::restore_tips;
+use crate::crawl::twists::untwist_curves;
 use crate::files::{open_regular_file, ReadError};
 use crate::output::debug::Stages;
 use crate::output::fit::{
@@ -222,6 +223,7 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
         // The stages since the first check can leave a piece beside a path that covers it.
         drop_covered_open_curves(&mut curves, stroke_width);
         restore_tips(&mut curves, &raster.mask, stroke_width);
+        untwist_curves(&mut curves, stroke_width);
     }
     watch.lap(&mut report, "reconstruct");
 

@@ -25,6 +25,7 @@ pub mod strokes;
 mod through;
 pub mod tips;
 mod triangulation;
+pub mod twists;
 
 /// Removes the items whose flag in `marked` is set (one flag per item), keeping the others in
 /// order: the curves a post-crawl stage folded or spliced into others.
