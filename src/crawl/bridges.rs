@@ -168,13 +168,7 @@ pub(super) const MAX_STRAIGHT_TURN_DEGREES: f64 = 60.0;
 
 /// Ends turning by more than this (degrees) may instead be joined at the corner where their lines
 /// meet.
-// DECISION: (stop 57) 32°, down from 35°: a corner of 64°–70° in a pen lift, whose ends turn
-// 32°–35° each to the chord, is a corner too. Measured on the benchmark (exact of 432, the eight
-// splits with every other constant as it is): development +3, nothing lost (a "( )"'s arc end, a
-// thin animal's foot, a thin object's corner), validation +1, seed 4 unchanged. 30° gains one
-// more and loses two (a thin meander's and a thick closing loop's gentle gaps then turn a
-// corner), 28° and 25° measure as 30°, 40° loses ten.
-const MIN_CORNER_TURN_DEGREES: f64 = 32.0;
+const MIN_CORNER_TURN_DEGREES: f64 = 35.0;
 
 /// The lines of two ends may meet this share of the distance between the ends behind one of
 /// them and still count as meeting at that end (a stroke drawn right up to a corner).
@@ -4273,7 +4267,7 @@ mod tests {
     #[test]
     fn a_gentle_gap_between_straight_ends_goes_round_not_through_a_corner() {
         // Straight ends (no bend, no curving) each turning 38° into the gap: a corner bridge is
-        // offered (over 32°), but drawn through the arc's point midway, on the circle. Turning
+        // offered (over 35°), but drawn through the arc's point midway, on the circle. Turning
         // 45° each (a right angle with a pen lift at its corner), through the meeting point.
         let corner_at = |half_span: f64| corner_across_gap(half_span, [StraightRun::UNMEASURED; 2]);
         let gentle = corner_at(38.0);
