@@ -15,7 +15,7 @@ use super::through::{
     angle, junction_reach, through_candidates, ThroughCandidate, ThroughCorner, ARM_IN_SPACINGS,
 };
 use crate::geometry::grid::PointGrid;
-use crate::geometry::polyline::{distance_to_segment, lines_meet, polyline_length};
+use crate::geometry::polyline::{distance_to_segment, lines_meet, polyline_length, segments_cross};
 use crate::geometry::UnionFind;
 use crate::strokes::MIN_LOOP_SAMPLES;
 
@@ -3439,12 +3439,6 @@ fn point_behind(vertices: &StrokeVertices, end: &BridgeableEnd, distance: f64) -
         previous = p;
     }
     (previous, walked)
-}
-
-/// Whether the segments `a0–a1` and `b0–b1` cross at a point inside both.
-fn segments_cross(a0: Point, a1: Point, b0: Point, b1: Point) -> bool {
-    let side = |p: Point, q0: Point, q1: Point| (q1 - q0).cross(p - q0);
-    side(b0, a0, a1) * side(b1, a0, a1) < 0.0 && side(a0, b0, b1) * side(a1, b0, b1) < 0.0
 }
 
 /// Where the rays from `a` along `ua` and from `b` along `ub` meet ahead of both, and the length

@@ -5,7 +5,7 @@
 
 use kurbo::Point;
 
-use crate::geometry::polyline::Polyline;
+use crate::geometry::polyline::{segments_cross, Polyline};
 
 /// DECISION: (stop 57) a curve that crosses itself within this much of its length (in pen
 /// widths) is twisted, not looped: a loop that short round is under two pen widths across and its
@@ -82,12 +82,6 @@ fn reverse_stretch(points: &mut [Point], from: usize, to: usize) {
         lo += 1;
         hi -= 1;
     }
-}
-
-/// Whether the segments `a0`–`a1` and `b0`–`b1` cross at a point inside both.
-fn segments_cross(a0: Point, a1: Point, b0: Point, b1: Point) -> bool {
-    let side = |p: Point, q0: Point, q1: Point| (q1 - q0).cross(p - q0);
-    side(b0, a0, a1) * side(b1, a0, a1) < 0.0 && side(a0, b0, b1) * side(a1, b0, b1) < 0.0
 }
 
 #[cfg(test)]

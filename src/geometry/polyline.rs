@@ -183,6 +183,13 @@ pub(crate) fn signed_turn(incoming: Vec2, outgoing: Vec2) -> f64 {
     incoming.cross(outgoing).atan2(incoming.dot(outgoing))
 }
 
+/// Whether the segments `a0`–`a1` and `b0`–`b1` cross at a point inside both (touching or
+/// overlapping is no crossing).
+pub(crate) fn segments_cross(a0: Point, a1: Point, b0: Point, b1: Point) -> bool {
+    let side = |p: Point, q0: Point, q1: Point| (q1 - q0).cross(p - q0);
+    side(b0, a0, a1) * side(b1, a0, a1) < 0.0 && side(a0, b0, b1) * side(a1, b0, b1) < 0.0
+}
+
 /// Where the line through `a0 → a1` meets the line through `b0 → b1`; none for lines whose
 /// angle's sine is below `min_sine` (near-parallel), or where either is a single point.
 pub(crate) fn lines_meet(
