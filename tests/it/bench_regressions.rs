@@ -75,3 +75,26 @@ fn loops_that_touch_once_an_outline_is_closed_are_joined() {
     assert_traces_exactly(6, "animals", "thin", 4);
     assert_traces_exactly(8, "meanders", "thin", 1);
 }
+
+/// A thin animal's foot and a thick star's tip whose outlines crossed themselves within a few
+/// pen widths: the twists are taken out (stop 57, `untwist_curves`).
+#[test]
+fn outlines_twisted_at_a_foot_or_a_tip_are_uncrossed() {
+    assert_traces_exactly(1, "animals", "scan", 4);
+    assert_traces_exactly(8, "stars", "thick", 5);
+}
+
+/// Two scanned objects whose short dashes (1.6–2 sample spacings) were taken as dots and bridged
+/// from their middles: they keep their two ends (stop 57).
+#[test]
+fn a_dash_past_one_and_six_tenths_spacings_keeps_its_two_ends() {
+    assert_traces_exactly(3, "objects", "scan", 4);
+    assert_traces_exactly(8, "objects", "scan", 3);
+}
+
+/// A thick spike whose curving sides bent the arm lines read four pen widths back from its
+/// rounded vertex: the rounding is sought at most 3.2 pen widths back (stop 57).
+#[test]
+fn a_thick_spikes_apex_is_read_from_its_arms_near_the_tip() {
+    assert_traces_exactly(6, "spikes", "thick", 0);
+}
