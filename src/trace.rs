@@ -14,6 +14,7 @@ use crate::crawl::contacts::{
     join_touching_loops, splice_loops_into_bridges,
 };
 use crate::crawl::crossings::{go_on_through_corners, pair_arms_straightest_first};
+use crate::crawl::legs::splice_leftover_legs;
 use crate::crawl::outline_gaps::{close_outline_gaps, close_outline_gaps_across_ink};
 use crate::crawl::slivers::open_slivers;
 use crate::crawl::spikes::{
@@ -222,6 +223,7 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
         join_band_tips_across_gaps(&mut curves, stroke_width);
         // The stages since the first check can leave a piece beside a path that covers it.
         drop_covered_open_curves(&mut curves, stroke_width);
+        splice_leftover_legs(&mut curves, stroke_width);
         restore_tips(&mut curves, &raster.mask, stroke_width);
         untwist_curves(&mut curves, stroke_width);
     }

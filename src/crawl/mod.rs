@@ -15,6 +15,7 @@ mod closure;
 pub mod contacts;
 pub mod crossings;
 mod hairpins;
+pub mod legs;
 pub mod neighbours;
 pub mod outline_gaps;
 pub mod reconstruct;

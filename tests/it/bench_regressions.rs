@@ -98,3 +98,11 @@ fn a_dash_past_one_and_six_tenths_spacings_keeps_its_two_ends() {
 fn a_thick_spikes_apex_is_read_from_its_arms_near_the_tip() {
     assert_traces_exactly(6, "spikes", "thick", 0);
 }
+
+/// A thin animal whose foot touches the next leg: the leg, one line of merged sides left as an
+/// open curve from the body to between the foot's two sides, is spliced in twice (stop 57,
+/// `splice_leftover_legs`).
+#[test]
+fn a_thin_leg_left_beside_its_outline_is_spliced_in_twice() {
+    assert_traces_exactly(3, "animals", "thin", 2);
+}
