@@ -5,7 +5,7 @@
 
 use kurbo::{Line, ParamCurve, ParamCurveNearest, Point};
 
-use crate::geometry::polyline::Polyline;
+use crate::geometry::polyline::{bounding_box, Polyline};
 
 /// An end of the leg lies on a pass of the outline within this much of it (pen widths).
 const LEG_END_ON_OUTLINE_IN_PEN_WIDTHS: f64 = 1.5;
@@ -26,13 +26,29 @@ const MIN_LEG_IN_PEN_WIDTHS: f64 = 2.0;
 /// split; validation and seed 4 unchanged. Only three development outputs have such a piece.
 pub fn splice_leftover_legs(curves: &mut Vec<Polyline>, stroke_width: f64) {
     let reach = LEG_END_ON_OUTLINE_IN_PEN_WIDTHS * stroke_width;
+    // Each outline's box grown by the reach: a page of noise holds thousands of curves, and only
+    // an outline whose box holds both of a leg's ends is looked at closely.
+    let grown = |curve: &Polyline| {
+        if curve.points.is_empty() {
+            kurbo::Rect::ZERO
+        } else {
+            bounding_box(&curve.points).inflate(reach, reach)
+        }
+    };
+    let mut boxes: Vec<kurbo::Rect> = curves.iter().map(grown).collect();
     let mut i = 0;
     while i < curves.len() {
         let leg = &curves[i];
         let spliced = (!leg.closed && leg.length() >= MIN_LEG_IN_PEN_WIDTHS * stroke_width)
             .then(|| {
+                let (top, foot) = (leg.points[0], leg.points[leg.points.len() - 1]);
                 (0..curves.len())
-                    .filter(|&j| j != i && curves[j].closed)
+                    .filter(|&j| {
+                        j != i
+                            && curves[j].closed
+                            && boxes[j].contains(top)
+                            && boxes[j].contains(foot)
+                    })
                     .find_map(|j| {
                         [false, true].into_iter().find_map(|reversed| {
                             let mut points = curves[i].points.clone();
@@ -47,7 +63,9 @@ pub fn splice_leftover_legs(curves: &mut Vec<Polyline>, stroke_width: f64) {
         match spliced {
             Some((j, outline)) => {
                 curves[j] = Polyline::new(outline, true);
+                boxes[j] = grown(&curves[j]);
                 curves.remove(i);
+                boxes.remove(i);
             }
             None => i += 1,
         }
