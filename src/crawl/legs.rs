@@ -5,7 +5,7 @@
 
 use kurbo::{Line, ParamCurve, ParamCurveNearest, Point};
 
-use crate::geometry::polyline::{bounding_box, Polyline};
+use crate::geometry::polyline::{bounding_box, points_round_after, Polyline};
 
 /// An end of the leg lies on a pass of the outline within this much of it (pen widths).
 const LEG_END_ON_OUTLINE_IN_PEN_WIDTHS: f64 = 1.5;
@@ -42,6 +42,8 @@ pub fn splice_leftover_legs(curves: &mut Vec<Polyline>, stroke_width: f64) {
         let spliced = (!leg.closed && leg.length() >= MIN_LEG_IN_PEN_WIDTHS * stroke_width)
             .then(|| {
                 let (top, foot) = (leg.points[0], leg.points[leg.points.len() - 1]);
+                let reversed: Vec<Point> = leg.points.iter().rev().copied().collect();
+                let ways = [&leg.points[..], &reversed[..]];
                 (0..curves.len())
                     .filter(|&j| {
                         j != i
@@ -50,12 +52,8 @@ pub fn splice_leftover_legs(curves: &mut Vec<Polyline>, stroke_width: f64) {
                             && boxes[j].contains(foot)
                     })
                     .find_map(|j| {
-                        [false, true].into_iter().find_map(|reversed| {
-                            let mut points = curves[i].points.clone();
-                            if reversed {
-                                points.reverse();
-                            }
-                            spliced_outline(&curves[j].points, &points, reach).map(|o| (j, o))
+                        ways.iter().find_map(|way| {
+                            spliced_outline(&curves[j].points, way, reach).map(|o| (j, o))
                         })
                     })
             })
@@ -94,18 +92,7 @@ fn spliced_outline(outline: &[Point], leg: &[Point], reach: f64) -> Option<Vec<P
         return None;
     }
     // The outline's points after segment `from`'s start up to segment `to`'s start, going on.
-    let stretch = |from: usize, to: usize| -> Vec<Point> {
-        let mut points = Vec::new();
-        let mut k = (from + 1) % n;
-        loop {
-            points.push(outline[k]);
-            if k == to {
-                break;
-            }
-            k = (k + 1) % n;
-        }
-        points
-    };
+    let stretch = |from: usize, to: usize| points_round_after(outline, from, to);
     let mut spliced = vec![top_point];
     spliced.extend(stretch(at_top, b1));
     spliced.extend([b1_point, b2_point]);

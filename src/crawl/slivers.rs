@@ -9,7 +9,7 @@
 use kurbo::{Line, Point};
 
 use crate::geometry::polyline::{
-    distance_to_segment, distances_along, polyline_length, signed_area,
+    distance_to_segment, distances_along, points_round_after, polyline_length, signed_area,
 };
 use crate::geometry::Polyline;
 
@@ -133,14 +133,7 @@ fn sliver_sides(curve: &Polyline, stroke_width: f64) -> Option<[Polyline; 2]> {
     }
     let side = |from: usize, cut_from: Point, to: usize, cut_to: Point| {
         let mut side = vec![cut_from];
-        let mut k = (from + 1) % n;
-        loop {
-            side.push(points[k]);
-            if k == to {
-                break;
-            }
-            k = (k + 1) % n;
-        }
+        side.extend(points_round_after(points, from, to));
         side.push(cut_to);
         side.dedup();
         Polyline::new(side, false)

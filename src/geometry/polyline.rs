@@ -217,6 +217,21 @@ pub(crate) fn nearest_point_index(points: &[Point], to: Point) -> Option<usize> 
     (0..points.len()).min_by(|&a, &b| points[a].distance(to).total_cmp(&points[b].distance(to)))
 }
 
+/// The points of a closed curve after `points[from]` up to and including `points[to]`, going on
+/// round past the last point to the first.
+pub(crate) fn points_round_after(points: &[Point], from: usize, to: usize) -> Vec<Point> {
+    let n = points.len();
+    let mut stretch = Vec::new();
+    let mut k = (from + 1) % n;
+    loop {
+        stretch.push(points[k]);
+        if k == to {
+            return stretch;
+        }
+        k = (k + 1) % n;
+    }
+}
+
 /// The point `length` along the curve `points` from `points[k]`, forwards or backwards (round
 /// from the last point to the first where the curve is `closed`, at most once round); none where
 /// the curve is shorter than that.
