@@ -16,6 +16,7 @@ use crate::crawl::contacts::{
 use crate::crawl::crossings::{go_on_through_corners, pair_arms_straightest_first};
 use crate::crawl::legs::splice_leftover_legs;
 use crate::crawl::outline_gaps::{close_outline_gaps, close_outline_gaps_across_ink};
+use crate::crawl::retraced::cut_back_retraced_sides;
 use crate::crawl::slivers::open_slivers;
 use crate::crawl::spikes::{
     close_curves_ending_at_a_protrusion_tip, fold_collapsed_necks, fold_collapsed_spikes,
@@ -188,6 +189,8 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
     // Only the stroke-aware crawl bridges gaps (and measures their typical size); the stages after
     // it are its own, the point-set crawls' curves are left as they are.
     if let Some(typical_gap) = typical_gap {
+        // First, while the sides of bands read on past their end are still open curves.
+        cut_back_retraced_sides(&mut curves, stroke_width);
         fold_collapsed_necks(&mut curves, &raster.mask, stroke_width);
         fold_collapsed_spikes(&mut curves, &raster.mask, stroke_width);
         join_free_ends_to_spike_tips(&mut curves, &raster.mask, stroke_width);

@@ -19,6 +19,7 @@ pub mod legs;
 pub mod neighbours;
 pub mod outline_gaps;
 pub mod reconstruct;
+pub mod retraced;
 pub mod robust;
 pub mod slivers;
 pub mod spikes;

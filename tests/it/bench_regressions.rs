@@ -106,3 +106,13 @@ fn a_thick_spikes_apex_is_read_from_its_arms_near_the_tip() {
 fn a_thin_leg_left_beside_its_outline_is_spliced_in_twice() {
     assert_traces_exactly(3, "animals", "thin", 2);
 }
+
+/// Two lassos and a meander whose band of two merged lines was read on past where the lines part,
+/// along the line that goes on: the side that only retraced that line is cut back to the end of
+/// the line that parted across a pen lift (stop 58, `cut_back_retraced_sides`).
+#[test]
+fn a_band_side_read_past_the_bands_end_is_cut_back() {
+    assert_traces_exactly(6, "meanders", "clean", 5);
+    assert_traces_exactly(7, "meanders", "thin", 5);
+    assert_traces_exactly(7, "meanders", "clean", 0);
+}
