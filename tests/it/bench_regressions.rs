@@ -116,3 +116,11 @@ fn a_band_side_read_past_the_bands_end_is_cut_back() {
     assert_traces_exactly(7, "meanders", "thin", 5);
     assert_traces_exactly(7, "meanders", "clean", 0);
 }
+
+/// A thin "i" whose stem, a pixel wider than the pen over half its length, was split into two
+/// sides closed round it: a sliver too short for the share of its length beside its other side
+/// until the tips' blind stretches were left out of it (stop 58, `open_slivers`).
+#[test]
+fn a_short_sliver_round_a_thin_stem_is_opened() {
+    assert_traces_exactly(7, "dots", "thin", 4);
+}
