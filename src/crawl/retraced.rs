@@ -9,10 +9,10 @@
 //! free beside the retracing side. Ours, on top of the stroke crawl; the paper (Parakkat &
 //! Muthuganapathy 2016) has no ink width and no bands.
 
-use kurbo::{Line, ParamCurveNearest, Point};
+use kurbo::{Line, Point};
 
 use crate::geometry::grid::PointGrid;
-use crate::geometry::polyline::Polyline;
+use crate::geometry::polyline::{distance_to_segment, Polyline};
 
 /// A curve's end lies on another curve's line within this much (pen widths).
 const ON_LINE_IN_PEN_WIDTHS: f64 = 0.75;
@@ -176,10 +176,6 @@ fn segments(curve: &Polyline) -> impl Iterator<Item = Line> + '_ {
 fn segment(curve: &Polyline, s: usize) -> Line {
     let n = curve.points.len();
     Line::new(curve.points[s], curve.points[(s + 1) % n])
-}
-
-fn distance_to_segment(p: Point, line: Line) -> f64 {
-    line.nearest(p, 1e-9).distance_sq.sqrt()
 }
 
 /// For the open curve `i` read as `side` from the end in question: the join, where its end
