@@ -117,6 +117,14 @@ fn a_band_side_read_past_the_bands_end_is_cut_back() {
     assert_traces_exactly(7, "meanders", "clean", 0);
 }
 
+/// A thin spiral whose last turn, read as a band along the turn before, closed on itself at that
+/// turn's end: the loop is opened beside the inner turn's free end (stop 58,
+/// `cut_back_retraced_sides` on closed curves).
+#[test]
+fn a_loop_closed_along_itself_opens_to_the_line_that_parted() {
+    assert_traces_exactly(5, "meanders", "thin", 2);
+}
+
 /// A thin "i" whose stem, a pixel wider than the pen over half its length, was split into two
 /// sides closed round it: a sliver too short for the share of its length beside its other side
 /// until the tips' blind stretches were left out of it (stop 58, `open_slivers`).
