@@ -114,11 +114,7 @@ pub fn cut_back_retraced_sides(curves: &mut Vec<Polyline>, stroke_width: f64) {
                 curve.points.extend_from_slice(opened);
             }
             let dropped: Vec<usize> = opened_loops.iter().map(|(c, ..)| *c).collect();
-            let mut index = 0;
-            curves.retain(|_| {
-                index += 1;
-                !dropped.contains(&(index - 1))
-            });
+            remove_curves(curves, &dropped);
             continue;
         }
         for (_, side, join) in &joins {
@@ -129,11 +125,7 @@ pub fn cut_back_retraced_sides(curves: &mut Vec<Polyline>, stroke_width: f64) {
             onto.points.extend_from_slice(&side[join.from..]);
         }
         let dropped: Vec<usize> = joins.iter().map(|(i, _, _)| *i).collect();
-        let mut index = 0;
-        curves.retain(|_| {
-            index += 1;
-            !dropped.contains(&(index - 1))
-        });
+        remove_curves(curves, &dropped);
     }
 }
 
@@ -252,10 +244,29 @@ fn retraced_join(
     }
     // The free end of another open curve nearest the retracing stretch, and the stretch's point
     // nearest it.
-    let mut best: Option<(f64, Join)> = None;
-    for (from, &p) in side.iter().enumerate().take(last + 1).skip(1) {
+    nearest_free_end(curves, free_ends, &side[..=last], i, limits.reach).map(
+        |(_, from, onto, at_last)| Join {
+            onto,
+            at_last,
+            from,
+        },
+    )
+}
+
+/// The free end (of a curve other than `except`) nearest a point of `stretch` after its first,
+/// within `reach`: its distance, the point's index in `stretch`, the end's curve and whether the
+/// end is that curve's last point.
+fn nearest_free_end(
+    curves: &[Polyline],
+    free_ends: &PointGrid<(usize, bool)>,
+    stretch: &[Point],
+    except: usize,
+    reach: f64,
+) -> Option<(f64, usize, usize, bool)> {
+    let mut best: Option<(f64, usize, usize, bool)> = None;
+    for (k, &p) in stretch.iter().enumerate().skip(1) {
         for &(onto, at_last) in free_ends.around(p) {
-            if onto == i {
+            if onto == except {
                 continue;
             }
             let curve = &curves[onto].points;
@@ -265,19 +276,21 @@ fn retraced_join(
                 curve[0]
             };
             let d = p.distance(end);
-            if d <= limits.reach && best.as_ref().is_none_or(|b| d < b.0) {
-                best = Some((
-                    d,
-                    Join {
-                        onto,
-                        at_last,
-                        from,
-                    },
-                ));
+            if d <= reach && best.is_none_or(|b| d < b.0) {
+                best = Some((d, k, onto, at_last));
             }
         }
     }
-    best.map(|(_, join)| join)
+    best
+}
+
+/// `curves` without those at the indices `dropped`.
+fn remove_curves(curves: &mut Vec<Polyline>, dropped: &[usize]) {
+    let mut index = 0;
+    curves.retain(|_| {
+        index += 1;
+        !dropped.contains(&(index - 1))
+    });
 }
 
 /// For the closed curve `c`: where it turns back at a tip along itself (its two strands from the
@@ -346,24 +359,14 @@ fn hairpin_join(
         if (at(t) - mid).hypot() < 0.25 * limits.on_line {
             continue;
         }
-        let mut best: Option<(f64, usize, bool, isize, usize)> = None;
-        for (way, this, last) in [(1isize, &forward, run_f), (-1, &backward, run_b)] {
-            for (k, &p) in this.iter().enumerate().take(last + 1).skip(1) {
-                for &(onto, at_last) in free_ends.around(p) {
-                    let curve = &curves[onto].points;
-                    let end = if at_last {
-                        curve[curve.len() - 1]
-                    } else {
-                        curve[0]
-                    };
-                    let d = p.distance(end);
-                    if d <= limits.reach && best.is_none_or(|b| d < b.0) {
-                        best = Some((d, onto, at_last, way, k));
-                    }
-                }
-            }
-        }
-        let Some((_, onto, at_last, way, k)) = best else {
+        let best = [(1isize, &forward, run_f), (-1, &backward, run_b)]
+            .into_iter()
+            .filter_map(|(way, this, last)| {
+                nearest_free_end(curves, free_ends, &this[..=last], c, limits.reach)
+                    .map(|found| (found, way))
+            })
+            .min_by(|x, y| x.0 .0.total_cmp(&y.0 .0));
+        let Some(((_, k, onto, at_last), way)) = best else {
             continue;
         };
         // From the strand's point `k` away from the tip, round, and back to the tip.
