@@ -11,6 +11,8 @@
 
 use kurbo::{Line, Point};
 
+use super::remove_marked;
+use super::spikes::{segment, SegmentGrid};
 use crate::geometry::grid::PointGrid;
 use crate::geometry::polyline::{distance_to_segment, Polyline};
 
@@ -60,10 +62,10 @@ pub fn cut_back_retraced_sides(curves: &mut Vec<Polyline>, stroke_width: f64) {
     // Joins change the curves they join: each pass joins curves untouched in it, and the next
     // pass looks again (joins are rare: most pages take one pass).
     loop {
-        let lines = LineGrid::new(curves, limits.reach);
+        let lines = SegmentGrid::new(curves, limits.on_line);
         let free_ends = free_end_grid(curves, limits.reach);
         let mut touched = vec![false; curves.len()];
-        let mut joins = Vec::new();
+        let mut splices = Vec::new();
         for i in 0..curves.len() {
             if curves[i].closed || curves[i].points.len() < 2 {
                 continue;
@@ -73,59 +75,47 @@ pub fn cut_back_retraced_sides(curves: &mut Vec<Polyline>, stroke_width: f64) {
                 if from_last {
                     side.reverse();
                 }
-                let Some(join) = retraced_join(curves, &lines, &free_ends, i, &side, &limits)
+                let Some(splice) = retraced_join(curves, &lines, &free_ends, i, &side, &limits)
                 else {
                     continue;
                 };
-                if touched[i] || touched[join.onto] {
+                if touched[i] || touched[splice.onto] {
                     continue;
                 }
                 touched[i] = true;
-                touched[join.onto] = true;
-                joins.push((i, side, join));
+                touched[splice.onto] = true;
+                splices.push(splice);
                 break;
             }
         }
-        if joins.is_empty() {
-            // Then the closed curves that turn back along themselves (one at a time: each join
-            // changes the grids).
-            let mut opened_loops = Vec::new();
+        // Then, with no open side left to cut back, the closed curves that turn back along
+        // themselves.
+        if splices.is_empty() {
             for c in 0..curves.len() {
                 if !curves[c].closed || curves[c].points.len() < 4 {
                     continue;
                 }
-                if let Some((onto, at_last, opened)) = hairpin_join(curves, &free_ends, c, &limits)
-                {
-                    if touched[onto] {
-                        continue;
+                if let Some(splice) = hairpin_join(curves, &free_ends, c, &limits) {
+                    if !touched[splice.onto] {
+                        touched[splice.onto] = true;
+                        splices.push(splice);
                     }
-                    touched[onto] = true;
-                    opened_loops.push((c, onto, at_last, opened));
                 }
             }
-            if opened_loops.is_empty() {
-                return;
-            }
-            for (_, onto, at_last, opened) in &opened_loops {
-                let curve = &mut curves[*onto];
-                if !at_last {
-                    curve.points.reverse();
-                }
-                curve.points.extend_from_slice(opened);
-            }
-            let dropped: Vec<usize> = opened_loops.iter().map(|(c, ..)| *c).collect();
-            remove_curves(curves, &dropped);
-            continue;
         }
-        for (_, side, join) in &joins {
-            let onto = &mut curves[join.onto];
-            if !join.at_last {
-                onto.points.reverse();
-            }
-            onto.points.extend_from_slice(&side[join.from..]);
+        if splices.is_empty() {
+            return;
         }
-        let dropped: Vec<usize> = joins.iter().map(|(i, _, _)| *i).collect();
-        remove_curves(curves, &dropped);
+        let mut dropped = vec![false; curves.len()];
+        for splice in splices {
+            let curve = &mut curves[splice.onto];
+            if !splice.at_last {
+                curve.points.reverse();
+            }
+            curve.points.extend(splice.tail);
+            dropped[splice.dropped] = true;
+        }
+        remove_marked(curves, &dropped);
     }
 }
 
@@ -136,52 +126,38 @@ struct Limits {
     reach: f64,
 }
 
-/// A join found: the curve whose free end goes on (at its last point, or its first), and the
-/// index in the retracing side (read from its retracing end) from which the side is kept.
-struct Join {
+/// A join found: the curve whose free end goes on (at its last point, or its first), the points
+/// it goes on through (the retracing side's or the opened loop's rest), and the curve those came
+/// from, which the join replaces.
+struct Splice {
     onto: usize,
     at_last: bool,
-    from: usize,
+    tail: Vec<Point>,
+    dropped: usize,
 }
 
-/// Every curve's segments in square cells, for the distance from a point to one curve's line.
-struct LineGrid {
-    grid: PointGrid<(usize, usize)>,
+/// The distance from `p` to curve `c`'s line where it is within the grid's reach.
+fn distance_to(lines: &SegmentGrid, p: Point, c: usize, curves: &[Polyline]) -> Option<f64> {
+    lines
+        .around(p)
+        .filter(|&&(curve, _)| curve == c)
+        .map(|&(_, s)| distance_to_segment(p, segment(curves, c, s)))
+        .min_by(f64::total_cmp)
 }
 
-impl LineGrid {
-    /// The segments of `curves`, each placed in the cells it passes through (at points half a
-    /// cell apart along it), so that every segment within a cell's width of a point is found.
-    fn new(curves: &[Polyline], cell: f64) -> Self {
-        let mut grid = PointGrid::new(cell);
-        for (c, curve) in curves.iter().enumerate() {
-            for (s, line) in segments(curve).enumerate() {
-                let steps = (line.length() / (0.5 * cell)).ceil().max(1.0) as usize;
-                for k in 0..=steps {
-                    grid.insert(line.p0.lerp(line.p1, k as f64 / steps as f64), (c, s));
-                }
-            }
-        }
-        Self { grid }
-    }
-
-    /// The distance from `p` to curve `c`'s line where it is within a cell's width.
-    fn distance_to(&self, p: Point, c: usize, curves: &[Polyline]) -> Option<f64> {
-        self.grid
-            .around(p)
-            .filter(|&&(curve, _)| curve == c)
-            .map(|&(_, s)| distance_to_segment(p, segment(&curves[c], s)))
-            .min_by(f64::total_cmp)
-    }
-
-    /// The curve other than `except` whose line passes nearest `p`, and how near.
-    fn nearest_other(&self, p: Point, except: usize, curves: &[Polyline]) -> Option<(usize, f64)> {
-        self.grid
-            .around(p)
-            .filter(|&&(curve, _)| curve != except)
-            .map(|&(c, s)| (c, distance_to_segment(p, segment(&curves[c], s))))
-            .min_by(|x, y| x.1.total_cmp(&y.1).then(x.0.cmp(&y.0)))
-    }
+/// The curve other than `except` whose line passes nearest `p` (within the grid's reach), and how
+/// near.
+fn nearest_other(
+    lines: &SegmentGrid,
+    p: Point,
+    except: usize,
+    curves: &[Polyline],
+) -> Option<(usize, f64)> {
+    lines
+        .around(p)
+        .filter(|&&(curve, _)| curve != except)
+        .map(|&(c, s)| (c, distance_to_segment(p, segment(curves, c, s))))
+        .min_by(|x, y| x.1.total_cmp(&y.1).then(x.0.cmp(&y.0)))
 }
 
 /// The free ends of the open curves: (curve, whether it is the curve's last point).
@@ -197,33 +173,17 @@ fn free_end_grid(curves: &[Polyline], cell: f64) -> PointGrid<(usize, bool)> {
     grid
 }
 
-/// The segments of `curve` in order (a closed curve's last one back to its first point).
-fn segments(curve: &Polyline) -> impl Iterator<Item = Line> + '_ {
-    let n = curve.points.len();
-    let count = match (n, curve.closed) {
-        (0 | 1, _) => 0,
-        (_, true) => n,
-        (_, false) => n - 1,
-    };
-    (0..count).map(move |s| segment(curve, s))
-}
-
-fn segment(curve: &Polyline, s: usize) -> Line {
-    let n = curve.points.len();
-    Line::new(curve.points[s], curve.points[(s + 1) % n])
-}
-
-/// For the open curve `i` read as `side` from the end in question: the join, where its end
+/// For the open curve `i` read as `side` from the end in question: the splice, where its end
 /// retraces another curve's line and a free end lies beside the retracing stretch.
 fn retraced_join(
     curves: &[Polyline],
-    lines: &LineGrid,
+    lines: &SegmentGrid,
     free_ends: &PointGrid<(usize, bool)>,
     i: usize,
     side: &[Point],
     limits: &Limits,
-) -> Option<Join> {
-    let (line, distance) = lines.nearest_other(side[0], i, curves)?;
+) -> Option<Splice> {
+    let (line, distance) = nearest_other(lines, side[0], i, curves)?;
     if distance > limits.on_line {
         return None;
     }
@@ -231,9 +191,7 @@ fn retraced_join(
     let mut last = 0;
     let mut retraced = 0.0;
     while last + 1 < side.len()
-        && lines
-            .distance_to(side[last + 1], line, curves)
-            .is_some_and(|d| d <= limits.on_line)
+        && distance_to(lines, side[last + 1], line, curves).is_some_and(|d| d <= limits.on_line)
     {
         retraced += side[last].distance(side[last + 1]);
         last += 1;
@@ -245,10 +203,11 @@ fn retraced_join(
     // The free end of another open curve nearest the retracing stretch, and the stretch's point
     // nearest it.
     nearest_free_end(curves, free_ends, &side[..=last], i, limits.reach).map(
-        |(_, from, onto, at_last)| Join {
+        |(_, from, onto, at_last)| Splice {
             onto,
             at_last,
-            from,
+            tail: side[from..].to_vec(),
+            dropped: i,
         },
     )
 }
@@ -284,27 +243,18 @@ fn nearest_free_end(
     best
 }
 
-/// `curves` without those at the indices `dropped`.
-fn remove_curves(curves: &mut Vec<Polyline>, dropped: &[usize]) {
-    let mut index = 0;
-    curves.retain(|_| {
-        index += 1;
-        !dropped.contains(&(index - 1))
-    });
-}
-
 /// For the closed curve `c`: where it turns back at a tip along itself (its two strands from the
 /// tip within [`ON_LINE_IN_PEN_WIDTHS`] of each other for [`MIN_RETRACED_IN_PEN_WIDTHS`] or
 /// more) and a free end of an open curve lies within [`JOIN_REACH_IN_PEN_WIDTHS`] of one strand's
-/// retracing stretch: that curve (by index, and whether the end is its last point), and the
-/// closed curve opened there, from the strand's point nearest the end, away from the tip, round
-/// and back along the other strand to the tip.
+/// retracing stretch: the splice of the closed curve, opened there, onto that end's curve: from
+/// the strand's point nearest the end, away from the tip, round and back along the other strand
+/// to the tip.
 fn hairpin_join(
     curves: &[Polyline],
     free_ends: &PointGrid<(usize, bool)>,
     c: usize,
     limits: &Limits,
-) -> Option<(usize, bool, Vec<Point>)> {
+) -> Option<Splice> {
     let points = &curves[c].points;
     let n = points.len();
     let at = |k: isize| points[k.rem_euclid(n as isize) as usize];
@@ -373,7 +323,12 @@ fn hairpin_join(
         let opened: Vec<Point> = (0..=(n as isize - k as isize))
             .map(|j| at(t + way * (k as isize + j)))
             .collect();
-        return Some((onto, at_last, opened));
+        return Some(Splice {
+            onto,
+            at_last,
+            tail: opened,
+            dropped: c,
+        });
     }
     None
 }

@@ -595,13 +595,14 @@ fn spike_root(points: &[Point], mask: &Bitmap, stroke_width: f64, typical: f64) 
 }
 
 /// The segments of all curves, bucketed by points along them one `reach` apart in cells twice
-/// as wide, so that every segment passing within `reach` of a point is found around it.
-struct SegmentGrid {
+/// as wide, so that every segment passing within `reach` of a point is found around it. Also
+/// [`super::retraced`]'s.
+pub(super) struct SegmentGrid {
     grid: PointGrid<(usize, usize)>,
 }
 
 impl SegmentGrid {
-    fn new(curves: &[Polyline], reach: f64) -> Self {
+    pub(super) fn new(curves: &[Polyline], reach: f64) -> Self {
         let step = reach.max(1.0);
         let mut grid = PointGrid::new(2.0 * step);
         for (i, curve) in curves.iter().enumerate() {
@@ -616,6 +617,12 @@ impl SegmentGrid {
             }
         }
         Self { grid }
+    }
+
+    /// The segments (curve, segment) bucketed around `p`: every one within the grid's `reach`
+    /// of it, and some farther.
+    pub(super) fn around(&self, p: Point) -> impl Iterator<Item = &(usize, usize)> + '_ {
+        self.grid.around(p)
     }
 
     /// Whether the ink between `a` and `b` is already traced by a curve other than `joined`:
@@ -669,7 +676,7 @@ impl SegmentGrid {
 
 /// Segment `s` of curve `i`: from its point `s` to the next (round to the first on a closed
 /// curve), as [`SegmentGrid`] buckets them.
-fn segment(curves: &[Polyline], i: usize, s: usize) -> Line {
+pub(super) fn segment(curves: &[Polyline], i: usize, s: usize) -> Line {
     let points = &curves[i].points;
     Line::new(points[s], points[(s + 1) % points.len()])
 }
