@@ -132,3 +132,11 @@ fn a_loop_closed_along_itself_opens_to_the_line_that_parted() {
 fn a_short_sliver_round_a_thin_stem_is_opened() {
     assert_traces_exactly(7, "dots", "thin", 4);
 }
+
+/// A thin tail whose band ends in a round knob: the band's two sides spread apart over the knob
+/// and stop 1.1 pen widths apart, and still turn into each other at the tail's tip (stop 59,
+/// `BAND_TIP_END_SPREAD_IN_BAND_WIDTHS`).
+#[test]
+fn a_bands_sides_spread_over_a_round_knob_still_meet_at_its_tip() {
+    assert_traces_exactly(5, "animals", "clean", 0);
+}
