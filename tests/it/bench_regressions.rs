@@ -140,3 +140,10 @@ fn a_short_sliver_round_a_thin_stem_is_opened() {
 fn a_bands_sides_spread_over_a_round_knob_still_meet_at_its_tip() {
     assert_traces_exactly(5, "animals", "clean", 0);
 }
+
+/// A scanned star whose tip's arms' lines meet inside the ink, short of an apex that fell in a
+/// pen lift: the apex goes on towards the ink's edge (stop 59, `restore_tips`).
+#[test]
+fn a_tip_whose_lines_meet_inside_the_ink_goes_on_towards_its_edge() {
+    assert_traces_exactly(8, "stars", "scan", 0);
+}
