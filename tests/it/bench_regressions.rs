@@ -147,3 +147,11 @@ fn a_bands_sides_spread_over_a_round_knob_still_meet_at_its_tip() {
 fn a_tip_whose_lines_meet_inside_the_ink_goes_on_towards_its_edge() {
     assert_traces_exactly(8, "stars", "scan", 0);
 }
+
+/// A scanned silhouette whose outline is broken in several places: a spike's two sides, side by
+/// side where a pen lift cut its tip, are joined while the outline is still open, since the
+/// chain they make holds a body (stop 59, `close_across_side_by_side_ends`).
+#[test]
+fn a_band_end_on_an_outline_still_open_is_joined() {
+    assert_traces_exactly(1, "spikes", "scan", 4);
+}
