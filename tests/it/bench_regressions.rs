@@ -155,3 +155,11 @@ fn a_tip_whose_lines_meet_inside_the_ink_goes_on_towards_its_edge() {
 fn a_band_end_on_an_outline_still_open_is_joined() {
     assert_traces_exactly(1, "spikes", "scan", 4);
 }
+
+/// A wave whose rising flank, trough to crest, fell in a pen lift: the two stubs left past the
+/// trough and the crest read flatter than the pen left them, and the straight bridge up the
+/// flank is costed with that slack (stop 59, `stub_slack`).
+#[test]
+fn a_flank_lost_between_two_stubs_is_bridged_up_it() {
+    assert_traces_exactly(5, "dots", "clean", 1);
+}
