@@ -163,3 +163,11 @@ fn a_band_end_on_an_outline_still_open_is_joined() {
 fn a_flank_lost_between_two_stubs_is_bridged_up_it() {
     assert_traces_exactly(5, "dots", "clean", 1);
 }
+
+/// A thick cloud whose base line is broken under a notch: the lobe bending down into the notch
+/// waits behind the base's straight bridge across its gap, and turns into its neighbour at the
+/// notch (stop 59, `defer_ends_on_gaps`).
+#[test]
+fn a_lobe_bending_into_a_base_lines_gap_waits_behind_the_base() {
+    assert_traces_exactly(3, "objects", "thick", 2);
+}
