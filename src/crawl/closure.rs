@@ -209,7 +209,8 @@ fn holds_a_body(points: &[Point], closed: bool, reach: f64) -> bool {
 /// Measured on the benchmark (exact of 432): seed 1 +1 (a scanned spike's outline), nothing
 /// lost on any split, seed 4 unchanged; every end side by side within the join reach
 /// ([`SIDE_BY_SIDE_MAX_IN_PEN_WIDTHS`]) instead loses a letter of seed 3; 2 pen widths across
-/// and 1 along the same as 3 and 2, with one outline break fewer left over.
+/// and 1 along the same as 3 and 2, with one outline break fewer left over, and 4 and 3 the same
+/// again.
 fn keep_band_ends_of_a_body(
     chain: &std::collections::VecDeque<u32>,
     points: &[Point],
