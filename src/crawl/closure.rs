@@ -130,36 +130,33 @@ pub(super) fn close_across_side_by_side_ends(
     }
     let base = edges.len();
     edges.extend(joins.iter().copied());
-    // Keep the joins of the loops they closed round a body; take back every other.
+    // Keep the joins of the loops they closed round a body, and of the open chains through a
+    // band's end that hold one ([`ends_a_band`]); take back every other.
     let join_set: HashSet<(u32, u32)> = joins.iter().flat_map(|&(u, v)| [(u, v), (v, u)]).collect();
+    let end_of = |v: u32| (positions[v as usize], free[&v]);
     let mut kept: HashSet<(u32, u32)> = HashSet::new();
     for chain in components(positions.len(), edges) {
-        if !chain.closed {
-            let order: Vec<Point> = chain
-                .vertices
-                .iter()
-                .map(|&v| positions[v as usize])
-                .collect();
-            keep_band_ends_of_a_body(&chain.vertices, &order, &join_set, reach, &mut kept, |v| {
-                (positions[v as usize], free[&v])
-            });
-            continue;
-        }
         let order: Vec<u32> = chain.vertices.iter().copied().collect();
         let n = order.len();
-        let closing: Vec<(u32, u32)> = (0..n)
+        let links = if chain.closed { n } else { n.saturating_sub(1) };
+        let joined: Vec<(u32, u32)> = (0..links)
             .map(|k| (order[k], order[(k + 1) % n]))
             .filter(|edge| join_set.contains(edge))
+            .filter(|&(u, v)| chain.closed || ends_a_band(end_of(u), end_of(v), reach))
             .collect();
-        if closing.is_empty() {
+        if joined.is_empty() {
             continue;
         }
         let points: Vec<Point> = order.iter().map(|&v| positions[v as usize]).collect();
         // Points along the bridges too (a bridge across a gap has no samples of its own), so
         // that no stretch is missed between two samples.
-        let dense = Polyline::new(points, true).resample(0.25 * reach).points;
-        if holds_a_body(&dense, true, reach) || roundness(&dense) >= ROUND_BODY_MIN_ROUNDNESS {
-            kept.extend(closing.iter().map(|&(u, v)| (u.min(v), u.max(v))));
+        let dense = Polyline::new(points, chain.closed)
+            .resample(0.25 * reach)
+            .points;
+        let body = holds_a_body(&dense, chain.closed, reach)
+            || (chain.closed && roundness(&dense) >= ROUND_BODY_MIN_ROUNDNESS);
+        if body {
+            kept.extend(joined.iter().map(|&(u, v)| (u.min(v), u.max(v))));
         }
     }
     let added: Vec<(u32, u32)> = edges.drain(base..).collect();
@@ -211,32 +208,7 @@ fn holds_a_body(points: &[Point], closed: bool, reach: f64) -> bool {
 /// ([`SIDE_BY_SIDE_MAX_IN_PEN_WIDTHS`]) instead loses a letter of seed 3; 2 pen widths across
 /// and 1 along the same as 3 and 2, with one outline break fewer left over, and 4 and 3 the same
 /// again.
-fn keep_band_ends_of_a_body(
-    chain: &std::collections::VecDeque<u32>,
-    points: &[Point],
-    joins: &HashSet<(u32, u32)>,
-    reach: f64,
-    kept: &mut HashSet<(u32, u32)>,
-    end_of: impl Fn(u32) -> (Point, Vec2),
-) {
-    let order: Vec<u32> = chain.iter().copied().collect();
-    let band_ends: Vec<(u32, u32)> = order
-        .windows(2)
-        .map(|pair| (pair[0], pair[1]))
-        .filter(|edge| joins.contains(edge))
-        .filter(|&(u, v)| ends_a_band(end_of(u), end_of(v), reach))
-        .collect();
-    if band_ends.is_empty() {
-        return;
-    }
-    let dense = Polyline::new(points.to_vec(), false)
-        .resample(0.25 * reach)
-        .points;
-    if holds_a_body(&dense, false, reach) {
-        kept.extend(band_ends.iter().map(|&(u, v)| (u.min(v), u.max(v))));
-    }
-}
-
+///
 /// Two ends side by side across a band's end are at most this far apart across the way they
 /// point (pen widths): a leg or a foot 0.5–3 pen widths wide.
 const BAND_END_MAX_ACROSS_IN_PEN_WIDTHS: f64 = 3.0;
