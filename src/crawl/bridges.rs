@@ -2154,8 +2154,8 @@ const ONE_LINE_MAX_ACROSS_IN_PEN_WIDTHS: f64 = 0.5;
 const ONE_LINE_MIN_RUN_BACK_SHARE: f64 = 0.75;
 
 /// DECISION: (stop 45) two free ends that point the same way, one behind the other on one line
-/// (the end ahead within [`ONE_LINE_MAX_ACROSS_IN_PEN_WIDTHS`] of the line of the end behind,
-/// more than a pen width apart), where the stroke of the end ahead runs back along that line (within a pen width)
+/// (each within [`ONE_LINE_MAX_ACROSS_IN_PEN_WIDTHS`] of the other's line, more than a pen width
+/// apart), where the stroke of the end ahead runs back along that line (within a pen width)
 /// [`ONE_LINE_MIN_RUN_BACK_SHARE`] of the way to the end behind, are never bridged: the corner
 /// ahead of both lies on the line, and the way there runs back along that stroke's own ink. Two
 /// sides of a tip lie side by side, a pen width or more apart, or their ink would be one line
@@ -2169,15 +2169,6 @@ const ONE_LINE_MIN_RUN_BACK_SHARE: f64 = 0.75;
 /// 392, 384 → 394, 393, 384 (`letters-thin-001`), validation and seed 4 unchanged (384, 384), fresh
 /// seeds 6, 7, 8 +1, +2, 0 (two "K"s and a scanned word); none lost. Without the band partner
 /// condition, two thin spikes whose tip piece lies on the line of the band's side are lost.
-///
-/// DECISION: (stop 60) the end behind must lie on the line of the end ahead only through that
-/// stroke running back along the line (as above), not through the end ahead's own direction: a
-/// stroke's last pixels may hook off its line (a scanned "H"'s right stem whose top curled 21°
-/// aside: the lower stem's end, 31 px below on the stem's line, lay 6.8 px off the hooked end's
-/// direction, beyond half a pen width, and its "corner" up the whole upper stem beat going on
-/// through the bar's corner). Measured on the benchmark (exact of 432), with
-/// [`super::crossings`]' passes of the same stop: seed 7 +1 (that "H"), nothing lost on any
-/// split; validation and seed 4 unchanged; 9 of 3456 outputs change.
 fn one_behind_the_other(
     vertices: &StrokeVertices,
     a: &BridgeableEnd,
@@ -2190,15 +2181,19 @@ fn one_behind_the_other(
     let chord = b.at - a.at;
     let length = chord.hypot();
     let near = ONE_LINE_MAX_ACROSS_IN_PEN_WIDTHS * stroke_width;
+    if ua.dot(ub) <= SAME_WAY_COSINE
+        || length <= stroke_width
+        || chord.cross(ua).abs() > near
+        || chord.cross(ub).abs() > near
+    {
+        return false;
+    }
     // The end ahead is the one the other points towards.
     let (ahead, behind, way) = if chord.dot(ua) < 0.0 {
         (a, b, ub)
     } else {
         (b, a, ua)
     };
-    if ua.dot(ub) <= SAME_WAY_COSINE || length <= stroke_width || chord.cross(way).abs() > near {
-        return false;
-    }
     let run_back = ONE_LINE_MIN_RUN_BACK_SHARE * length;
     let (back, walked) = point_behind(vertices, ahead, run_back);
     walked >= run_back && (back - behind.at).cross(way).abs() <= stroke_width

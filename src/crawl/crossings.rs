@@ -141,13 +141,13 @@ pub fn go_on_through_corners(curves: &mut Vec<Polyline>, typical_gap: f64, strok
 /// DECISION: (stop 60) ends go on through corners in passes, as long as a pass changes a curve,
 /// up to this many: a curve changed in a pass is done with for that pass (its points are no
 /// longer where the pass found them), but it may still have a corner another end goes on
-/// through. An "H" whose two stems both broke just below the bar came out of the crawl as one
-/// curve round both of the bar's corners, the upper stems and the bar, with the two lower stems
-/// pointing at its corners; the first pass sent one lower stem on through its corner, and the
-/// other stayed apart. Measured on the benchmark (exact of 432), with [`super::bridges`]'s
-/// end-ahead rule of the same stop: seed 7 +1 (that "H"), nothing lost on any split;
-/// validation and seed 4 unchanged. A letter's curve has a few corners; more passes than this
-/// would be ends going on through corners round and round.
+/// through. An "H" whose two stems both broke just below the bar can come out of the crawl as
+/// one curve round both of the bar's corners, the upper stems and the bar, with the two lower
+/// stems pointing at its corners; one pass sends only one lower stem on through its corner.
+/// Measured on the benchmark (exact of 432): no drawing gained or lost on any split (the one
+/// such "H" seen, seed 7 `letters-scan-003`, also needs its right stem's lower piece kept from
+/// a corner bridge up its own stem, see docs/benchmark.md, stop 60). A letter's curve has a few
+/// corners; more passes than this would be ends going on through corners round and round.
 const MAX_GO_ON_THROUGH_PASSES: usize = 4;
 
 /// One pass of [`go_on_through_corners`]; whether it changed a curve.

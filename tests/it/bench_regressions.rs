@@ -171,12 +171,3 @@ fn a_flank_lost_between_two_stubs_is_bridged_up_it() {
 fn a_lobe_bending_into_a_base_lines_gap_waits_behind_the_base() {
     assert_traces_exactly(3, "objects", "thick", 2);
 }
-
-/// A scanned "H" whose two stems both broke just below the bar, and whose right stem's top
-/// hooks aside: each lower stem goes on through its corner of the bar, one pass after the other,
-/// and the lower right stem is not joined back up its own stem to the hooked top (stop 60,
-/// `go_on_through_corners` passes and the end-ahead line of `one_behind_the_other`).
-#[test]
-fn an_h_broken_below_both_ends_of_its_bar_keeps_two_whole_stems() {
-    assert_traces_exactly(7, "letters", "scan", 3);
-}
