@@ -171,3 +171,11 @@ fn a_flank_lost_between_two_stubs_is_bridged_up_it() {
 fn a_lobe_bending_into_a_base_lines_gap_waits_behind_the_base() {
     assert_traces_exactly(3, "objects", "thick", 2);
 }
+
+/// Two facing arcs "( )" with pen lifts of their own whose two openings measure only 1.5–1.7
+/// typical gaps, under an opening's 1.75: the pair of openings, alike, clearly the loop's widest,
+/// halving it and each a kink, is taken out again (stop 60, `without_facing_openings`).
+#[test]
+fn facing_arcs_whose_openings_measure_narrow_stay_two_curves() {
+    assert_traces_exactly(6, "open-controls", "thin", 1);
+}
