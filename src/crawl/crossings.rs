@@ -144,10 +144,11 @@ pub fn go_on_through_corners(curves: &mut Vec<Polyline>, typical_gap: f64, strok
 /// through. An "H" whose two stems both broke just below the bar can come out of the crawl as
 /// one curve round both of the bar's corners, the upper stems and the bar, with the two lower
 /// stems pointing at its corners; one pass sends only one lower stem on through its corner.
-/// Measured on the benchmark (exact of 432): no drawing gained or lost on any split (the one
-/// such "H" seen, seed 7 `letters-scan-003`, also needs its right stem's lower piece kept from
-/// a corner bridge up its own stem, see docs/benchmark.md, stop 60). A letter's curve has a few
-/// corners; more passes than this would be ends going on through corners round and round.
+/// Measured on the benchmark (exact of 432): alone, no drawing gained or lost on any split;
+/// with the end ahead's line read past a hook ([`super::bridges`], same stop), which keeps the
+/// lower right stem of that "H" from a corner bridge up its own stem, seed 7 +1 (the "H",
+/// `letters-scan-003`), nothing lost, validation and seed 4 unchanged. A letter's curve has a
+/// few corners; more passes than this would be ends going on through corners round and round.
 const MAX_GO_ON_THROUGH_PASSES: usize = 4;
 
 /// One pass of [`go_on_through_corners`]; whether it changed a curve.

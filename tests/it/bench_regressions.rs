@@ -179,3 +179,12 @@ fn a_lobe_bending_into_a_base_lines_gap_waits_behind_the_base() {
 fn facing_arcs_whose_openings_measure_narrow_stay_two_curves() {
     assert_traces_exactly(6, "open-controls", "thin", 1);
 }
+
+/// A scanned "H" whose two stems both broke just below the bar, and whose right stem's top
+/// hooks aside: each lower stem goes on through its corner of the bar, one pass after the other,
+/// and the lower right stem is not joined back up its own stem to the hooked top (stop 60,
+/// `go_on_through_corners` passes and `ONE_LINE_HOOK_IN_PEN_WIDTHS`).
+#[test]
+fn an_h_broken_below_both_ends_of_its_bar_keeps_two_whole_stems() {
+    assert_traces_exactly(7, "letters", "scan", 3);
+}
