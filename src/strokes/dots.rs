@@ -9,6 +9,7 @@ use std::collections::HashSet;
 use kurbo::{Point, Vec2};
 
 use super::{Stroke, StrokeEnd};
+use crate::geometry::grid::PointGrid;
 use crate::geometry::polyline::polyline_length;
 use crate::raster::bitmap::{Bitmap, NEIGHBOUR_OFFSETS};
 
@@ -114,13 +115,22 @@ fn pieces_ends_point_at(
         .filter(|(stroke, dot)| dot.is_none() && !stroke.line.closed)
         .flat_map(|(stroke, _)| free_end_ways(stroke, END_WAY_IN_PEN_WIDTHS * pen))
         .collect();
+    // The ends in cells as wide as the farthest reach (a dot is at most
+    // [`DOT_MAX_DIAMETER_IN_PEN_WIDTHS`] wide), so that each dot looks only at those around it:
+    // a page of noise has thousands of dots and hundreds of thousands of ends.
+    let mut grid = PointGrid::new(
+        (TIP_PIECE_REACH_IN_PEN_WIDTHS + DOT_MAX_DIAMETER_IN_PEN_WIDTHS / 2.0) * pen,
+    );
+    for &(at, way) in &ends {
+        grid.insert(at, (at, way));
+    }
     as_dots
         .iter()
         .map(|dot| {
             let Some(dot) = dot else { return false };
             let reach = TIP_PIECE_REACH_IN_PEN_WIDTHS * pen + dot.diameter / 2.0;
-            let aiming: Vec<Point> = ends
-                .iter()
+            let aiming: Vec<Point> = grid
+                .around(dot.centre)
                 .filter(|&&(at, way)| {
                     let to = dot.centre - at;
                     let distance = to.hypot();
