@@ -1126,14 +1126,10 @@ impl<'a> Matching<'a> {
         result
     }
 
-    /// Takes out every opening ([`OPENING_MIN_IN_TYPICAL_GAPS`]) of a loop that has two or more.
-    /// Only loops of plain bridges between free ends are judged: a loop through a junction, a
-    /// corner gone through or a cusp is left as it is.
-    fn without_two_openings(
-        &self,
-        matched: Vec<&'a Candidate>,
-        typical_gap: f64,
-    ) -> Vec<&'a Candidate> {
+    /// The strokes joined by the plain bridges of `matched` (free end to free end, straight or
+    /// round), and the roots of the groups they close into loops: a plain bridge joins two
+    /// strokes of one group already, and no other kind of bridge touches the group.
+    fn loops_of_plain_bridges(&self, matched: &[&'a Candidate]) -> (StrokeGroups, HashSet<usize>) {
         let mut groups = StrokeGroups::new(self.vertices);
         let mut closing = Vec::new();
         for m in matched.iter().filter(|m| m.is_plain()) {
@@ -1149,11 +1145,23 @@ impl<'a> Matching<'a> {
             mixed.insert(groups.root(a));
             mixed.insert(groups.root(b));
         }
-        let loops: HashSet<usize> = closing
+        let loops = closing
             .into_iter()
             .map(|stroke| groups.root(stroke))
             .filter(|root| !mixed.contains(root))
             .collect();
+        (groups, loops)
+    }
+
+    /// Takes out every opening ([`OPENING_MIN_IN_TYPICAL_GAPS`]) of a loop that has two or more.
+    /// Only loops of plain bridges between free ends are judged: a loop through a junction, a
+    /// corner gone through or a cusp is left as it is.
+    fn without_two_openings(
+        &self,
+        matched: Vec<&'a Candidate>,
+        typical_gap: f64,
+    ) -> Vec<&'a Candidate> {
+        let (mut groups, loops) = self.loops_of_plain_bridges(&matched);
         let is_opening = |m: &Candidate| {
             m.is_plain() && self.ink_gap(m) >= OPENING_MIN_IN_TYPICAL_GAPS * typical_gap
         };
@@ -1185,24 +1193,7 @@ impl<'a> Matching<'a> {
         ends: &[BridgeableEnd],
         typical_gap: f64,
     ) -> Vec<&'a Candidate> {
-        let mut groups = StrokeGroups::new(self.vertices);
-        let mut closing = Vec::new();
-        for m in &matched {
-            let (a, b) = self.strokes_joined(m);
-            if groups.same(a, b) {
-                closing.push(a);
-            }
-            groups.join(a, b, m.length);
-        }
-        let mut mixed = HashSet::new();
-        for m in matched.iter().filter(|m| !m.is_plain()) {
-            mixed.insert(groups.root(self.strokes_joined(m).0));
-        }
-        let loops: HashSet<usize> = closing
-            .into_iter()
-            .map(|stroke| groups.root(stroke))
-            .filter(|root| !mixed.contains(root))
-            .collect();
+        let (mut groups, loops) = self.loops_of_plain_bridges(&matched);
         let outward: HashMap<u32, Vec2> = ends
             .iter()
             .filter(|end| !end.attached)
@@ -2349,9 +2340,12 @@ fn one_behind_the_other(
     } else {
         (b, a, ua, ub)
     };
-    // The end behind lies on the line of the end ahead: its own way, or its stroke's past a
-    // hook at its very end ([`ONE_LINE_HOOK_IN_PEN_WIDTHS`]).
     let on_line = |u: Vec2| chord.cross(u).abs() <= near;
+    if ua.dot(ub) <= SAME_WAY_COSINE || length <= stroke_width || !on_line(way) {
+        return false;
+    }
+    // The end behind lies on the line of the end ahead: its own way, or (walked only where that
+    // is off the line) its stroke's past a hook at its very end ([`ONE_LINE_HOOK_IN_PEN_WIDTHS`]).
     let ahead_on_line = on_line(ahead_way) || {
         let hook = ONE_LINE_HOOK_IN_PEN_WIDTHS * stroke_width;
         let (past_hook, _) = point_behind(vertices, ahead, hook);
@@ -2363,7 +2357,7 @@ fn one_behind_the_other(
         let way = past_hook - behind_hook;
         walked > hook && way.hypot() > 0.0 && on_line(way / way.hypot())
     };
-    if ua.dot(ub) <= SAME_WAY_COSINE || length <= stroke_width || !ahead_on_line || !on_line(way) {
+    if !ahead_on_line {
         return false;
     }
     let run_back = ONE_LINE_MIN_RUN_BACK_SHARE * length;

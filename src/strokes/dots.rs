@@ -109,19 +109,18 @@ fn pieces_ends_point_at(
     let pen = stroke_width.max(1.0);
     let aim = TIP_PIECE_AIM_MAX_DEGREES.to_radians().cos();
     let apart = TIP_PIECE_MIN_ENDS_APART_IN_PEN_WIDTHS * pen;
-    let ends: Vec<(Point, Vec2)> = strokes
-        .iter()
-        .zip(as_dots)
-        .filter(|(stroke, dot)| dot.is_none() && !stroke.line.closed)
-        .flat_map(|(stroke, _)| free_end_ways(stroke, END_WAY_IN_PEN_WIDTHS * pen))
-        .collect();
-    // The ends in cells as wide as the farthest reach (a dot is at most
-    // [`DOT_MAX_DIAMETER_IN_PEN_WIDTHS`] wide), so that each dot looks only at those around it:
-    // a page of noise has thousands of dots and hundreds of thousands of ends.
+    // The free ends of the strokes that are no dots, in cells as wide as the farthest reach (a
+    // dot is at most [`DOT_MAX_DIAMETER_IN_PEN_WIDTHS`] wide), so that each dot looks only at
+    // those around it: a page of noise has thousands of dots and hundreds of thousands of ends.
     let mut grid = PointGrid::new(
         (TIP_PIECE_REACH_IN_PEN_WIDTHS + DOT_MAX_DIAMETER_IN_PEN_WIDTHS / 2.0) * pen,
     );
-    for &(at, way) in &ends {
+    let ends = strokes
+        .iter()
+        .zip(as_dots)
+        .filter(|(stroke, dot)| dot.is_none() && !stroke.line.closed)
+        .flat_map(|(stroke, _)| free_end_ways(stroke, END_WAY_IN_PEN_WIDTHS * pen));
+    for (at, way) in ends {
         grid.insert(at, (at, way));
     }
     as_dots
