@@ -1199,7 +1199,7 @@ impl<'a> Matching<'a> {
             .filter(|end| !end.attached)
             .filter_map(|end| Some((end.vertex, end.outward?)))
             .collect();
-        let mut dropped: HashSet<usize> = HashSet::new();
+        let mut dropped = vec![false; matched.len()];
         for root in loops {
             let mut bridges: Vec<usize> = (0..matched.len())
                 .filter(|&i| groups.root(self.strokes_joined(matched[i]).0) == root)
@@ -1209,15 +1209,13 @@ impl<'a> Matching<'a> {
                     .total_cmp(&self.ink_gap(matched[x]))
             });
             if self.facing_openings(&matched, &bridges, &outward, typical_gap) {
-                dropped.extend(&bridges[..2]);
+                dropped[bridges[0]] = true;
+                dropped[bridges[1]] = true;
             }
         }
+        let mut matched = matched;
+        super::remove_marked(&mut matched, &dropped);
         matched
-            .into_iter()
-            .enumerate()
-            .filter(|(i, _)| !dropped.contains(i))
-            .map(|(_, m)| m)
-            .collect()
     }
 
     /// DECISION: (stop 60) a loop closes across one opening, and two facing arcs "( )" have
