@@ -14,12 +14,9 @@ use crawltrace::{to_svg, trace, TraceOptions};
 const KNOWN_FAILURES: &[(&str, &str)] = &[
     (
         "cat-fork-clean.png",
-        "the cat's outline and the end of its tail (a band of ink the outline goes out and back \
-         along) come out as one curve, but open: it runs out to the tail's tip and stops partway \
-         back, where the tail's band has a pen lift; two of the fork's four \
-         tines are cut across by pen lifts and not read as double strands: the fork's outline \
-         stays open at their tops, and a piece runs from one of them down to the right tine's \
-         base",
+        "the cat is exact (since stop 54); two of the fork's four tines (the second and the \
+         fourth), cut across by pen lifts, are not read as double strands traced out and back: \
+         the fork's outline stays open at their tops, in two pieces",
     ),
     (
         "spiral-waves-thin.png",
@@ -27,8 +24,8 @@ const KNOWN_FAILURES: &[(&str, &str)] = &[
     ),
     (
         "star-circle-thin.png",
-        "the star stays open at one 36° tip with a 1.75 px pen (the path ends 3.4 px short of \
-         it; the tolerance is 2.9 px)",
+        "the star closes, but one 36° tip whose apex fell in a pen lift is cut 3.3 px short \
+         with a 1.75 px pen; the tolerance is 2.9 px",
     ),
 ];
 
