@@ -188,3 +188,11 @@ fn facing_arcs_whose_openings_measure_narrow_stay_two_curves() {
 fn an_h_broken_below_both_ends_of_its_bar_keeps_two_whole_stems() {
     assert_traces_exactly(7, "letters", "scan", 3);
 }
+
+/// A "P" whose stem has its pen lift just below the bowl: the stem's lower piece is short and
+/// curls off the corner where the bowl meets the stem, and goes on through it read along its
+/// chord (stop 61, `through::UNBENT_MAX_IN_ARMS`).
+#[test]
+fn a_short_curled_stem_piece_goes_on_through_the_corner_above_it() {
+    assert_traces_exactly(7, "letters", "clean", 3);
+}
