@@ -196,3 +196,13 @@ fn an_h_broken_below_both_ends_of_its_bar_keeps_two_whole_stems() {
 fn a_short_curled_stem_piece_goes_on_through_the_corner_above_it() {
     assert_traces_exactly(7, "letters", "clean", 3);
 }
+
+/// Thick meanders whose two lines, merged into one band, part where one of them ends in a pen
+/// lift: the band's skeleton slid onto the line that goes on before the band's cut, and the
+/// ending line's free end slid with it. That side now ends where the band is last two strokes
+/// apart (`FREE_SIDE_MIN_SPACING_SHARE`), at the band's usual spacing.
+#[test]
+fn a_bands_side_that_ends_where_its_line_parts_does_not_slide_onto_the_other() {
+    assert_traces_exactly(1, "meanders", "thick", 5);
+    assert_traces_exactly(7, "meanders", "thick", 3);
+}
