@@ -206,3 +206,12 @@ fn a_bands_side_that_ends_where_its_line_parts_does_not_slide_onto_the_other() {
     assert_traces_exactly(1, "meanders", "thick", 5);
     assert_traces_exactly(7, "meanders", "thick", 3);
 }
+
+/// A thick spike drawing whose finger's right side stops short of its flat end (the pen lifted
+/// there) inside the finger's merged ink: the end's corner on that side goes abreast of the
+/// left side's tip, on the right side's line, not to a point at the left side's tip (stop 61,
+/// `staggered_side`).
+#[test]
+fn a_fingers_flat_end_keeps_the_corner_its_short_side_lifted_before() {
+    assert_traces_exactly(6, "spikes", "thick", 5);
+}
