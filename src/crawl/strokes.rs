@@ -25,7 +25,7 @@ use super::closure::{
     close_across_side_by_side_ends, close_curves_ending_on_themselves,
     join_holes_touching_their_outline, thread_loops_through_shared_necks,
 };
-use super::hairpins::open_facing_hairpins;
+use super::hairpins::{join_feet_to_merged_legs, open_facing_hairpins};
 use super::reconstruct::{self, canonical_orientation, Reconstruction};
 use super::through::angle;
 use super::ReconstructError;
@@ -496,6 +496,7 @@ pub fn connect_strokes(
         spacing,
         stroke_width,
     );
+    let strokes: &[Stroke] = &join_feet_to_merged_legs(strokes, spacing, stroke_width);
     let vertices = StrokeVertices::new(strokes, spacing);
     let positions = &vertices.positions;
     let StrokeGraph { mut edges, ends } =

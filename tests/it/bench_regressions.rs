@@ -215,3 +215,12 @@ fn a_bands_side_that_ends_where_its_line_parts_does_not_slide_onto_the_other() {
 fn a_fingers_flat_end_keeps_the_corner_its_short_side_lifted_before() {
     assert_traces_exactly(6, "spikes", "thick", 5);
 }
+
+/// A leg whose two sides merged into one line, a hairpin at its bottom, with the foot's two lines
+/// ending beside it in pen lifts short of the foot's corners: each foot line goes on round its
+/// corner into its side of the leg (issue 9, `join_feet_to_merged_legs`), instead of the two
+/// being joined to each other across the foot.
+#[test]
+fn a_foot_beside_a_merged_legs_hairpin_turns_into_the_legs_two_sides() {
+    assert_traces_exactly(1, "animals", "clean", 2);
+}
