@@ -224,3 +224,10 @@ fn a_fingers_flat_end_keeps_the_corner_its_short_side_lifted_before() {
 fn a_foot_beside_a_merged_legs_hairpin_turns_into_the_legs_two_sides() {
     assert_traces_exactly(1, "animals", "clean", 2);
 }
+
+/// A scanned animal's ear whose one side stopped short of the point is a staggered tip, not a
+/// cusp: its apex is where the leading side reaches (STAGGERED_TIP_MIN_LEAD_IN_PEN_WIDTHS).
+#[test]
+fn an_ear_whose_one_side_leads_is_a_staggered_tip_not_a_cusp() {
+    assert_traces_exactly(8, "animals", "scan", 2);
+}
