@@ -231,3 +231,14 @@ fn a_foot_beside_a_merged_legs_hairpin_turns_into_the_legs_two_sides() {
 fn an_ear_whose_one_side_leads_is_a_staggered_tip_not_a_cusp() {
     assert_traces_exactly(8, "animals", "scan", 2);
 }
+
+/// Two thick lines merged into a band out of a junction, one of which ends at a pen lift where
+/// the other parts from it, one stroke wide for less than two stretches beyond the band: the band
+/// is cut where it ends, as the parting line leaves its centre line by a side's offset
+/// (`parts_from_band`), and the ending line's side ends there, instead of both sides running on
+/// to the dash's end.
+#[test]
+fn a_short_line_parting_from_a_thick_band_cuts_the_band_where_it_ends() {
+    assert_traces_exactly(3, "meanders", "thick", 4);
+    assert_traces_exactly(6, "meanders", "thick", 3);
+}
