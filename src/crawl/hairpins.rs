@@ -46,11 +46,39 @@ struct Hairpin {
     width: f64,
 }
 
+/// The strokes with their hairpins opened where the lines go on ([`open_facing_hairpins`]) and
+/// merged legs joined to their feet ([`join_feet_to_merged_legs`]), before any bridge is
+/// matched. The hairpins are found once, and again only where facing ones were opened (the
+/// strokes changed). `reach` is the longest bridge the matching can take, `spacing` the strokes'
+/// sample spacing.
+pub(super) fn open_hairpins(
+    strokes: &[Stroke],
+    reach: f64,
+    spacing: f64,
+    stroke_width: f64,
+) -> Cow<'_, [Stroke]> {
+    let arm = ARM_IN_SPACINGS * spacing;
+    let hairpins = find_hairpins(strokes, arm, stroke_width);
+    match open_facing_hairpins(strokes, &hairpins, reach, stroke_width) {
+        Cow::Borrowed(strokes) => {
+            join_feet_to_merged_legs(strokes, &hairpins, spacing, stroke_width)
+        }
+        Cow::Owned(opened) => {
+            let hairpins = find_hairpins(&opened, arm, stroke_width);
+            let joined = join_feet_to_merged_legs(&opened, &hairpins, spacing, stroke_width);
+            if let Cow::Owned(joined) = joined {
+                return Cow::Owned(joined);
+            }
+            Cow::Owned(opened)
+        }
+    }
+}
+
 /// The strokes with every pair of facing hairpins opened at their tips: each such stroke is cut
 /// in two there, the tip's rounded end dropped, and both pieces end free. Two hairpins face each
 /// other when their tips lie at most `reach` apart (the longest bridge the matching can take),
 /// each one's axis points at the other's tip and their widths agree; each hairpin is paired
-/// with its nearest facing one. `spacing` is the strokes' sample spacing.
+/// with its nearest facing one. `hairpins` are the strokes' own ([`find_hairpins`]).
 ///
 /// DECISION: (stop 47) facing hairpins are opened before any bridge is matched, and the
 /// matching then treats their four ends as any others: each line's two ends face each other
@@ -60,14 +88,13 @@ struct Hairpin {
 /// benchmark: seeds 5 and 8 +1 each (thin dumbbells whose neck was traced as two sealed stubs,
 /// two closed loops), the other development splits, validation and seed 4 unchanged, none
 /// lost; arms measured over one and a half spacings find none of these, over three the same.
-pub(super) fn open_facing_hairpins(
-    strokes: &[Stroke],
+fn open_facing_hairpins<'a>(
+    strokes: &'a [Stroke],
+    hairpins: &[Hairpin],
     reach: f64,
-    spacing: f64,
     stroke_width: f64,
-) -> Cow<'_, [Stroke]> {
-    let hairpins = find_hairpins(strokes, ARM_IN_SPACINGS * spacing, stroke_width);
-    let pairs = facing_pairs(&hairpins, reach, stroke_width);
+) -> Cow<'a, [Stroke]> {
+    let pairs = facing_pairs(hairpins, reach, stroke_width);
     if pairs.is_empty() {
         return Cow::Borrowed(strokes);
     }
@@ -277,13 +304,13 @@ fn free_ends(strokes: &[Stroke], look_back: f64) -> Vec<FreeEnd> {
 /// development outputs change. The same from 4 to 6 pen widths of reach, 3 to 5 past the tip,
 /// 1.5 to 3 pen widths of merged width, 1.5 to 3 of an end's way, and an arm's line read to 2
 /// or 3 arm lengths (to 4, a slanted leg's line is read too far up and one gain goes).
-pub(super) fn join_feet_to_merged_legs(
-    strokes: &[Stroke],
+fn join_feet_to_merged_legs<'a>(
+    strokes: &'a [Stroke],
+    hairpins: &[Hairpin],
     spacing: f64,
     stroke_width: f64,
-) -> Cow<'_, [Stroke]> {
+) -> Cow<'a, [Stroke]> {
     let arm = ARM_IN_SPACINGS * spacing;
-    let hairpins = find_hairpins(strokes, arm, stroke_width);
     if hairpins.is_empty() || stroke_width <= 0.0 {
         return Cow::Borrowed(strokes);
     }
@@ -300,7 +327,7 @@ pub(super) fn join_feet_to_merged_legs(
     }
     let mut used: HashSet<usize> = HashSet::new();
     let mut plans: Vec<Plan> = Vec::new();
-    for hairpin in &hairpins {
+    for hairpin in hairpins {
         let stroke = &strokes[hairpin.stroke];
         if used.contains(&hairpin.stroke) || stroke.line.closed || hairpin.width > merged {
             continue;
@@ -568,7 +595,8 @@ mod tests {
     }
 
     fn opened(strokes: &[Stroke]) -> Vec<Stroke> {
-        open_facing_hairpins(strokes, 45.0, 4.0, 3.0).into_owned()
+        let hairpins = find_hairpins(strokes, ARM_IN_SPACINGS * 4.0, 3.0);
+        open_facing_hairpins(strokes, &hairpins, 45.0, 3.0).into_owned()
     }
 
     fn line(from: (f64, f64), to: (f64, f64)) -> Stroke {
@@ -585,6 +613,11 @@ mod tests {
             wide: false,
             contacts: Vec::new(),
         }
+    }
+
+    fn joined_feet(strokes: &[Stroke]) -> Vec<Stroke> {
+        let hairpins = find_hairpins(strokes, ARM_IN_SPACINGS * 4.0, 3.0);
+        join_feet_to_merged_legs(strokes, &hairpins, 4.0, 3.0).into_owned()
     }
 
     fn near(stroke: &Stroke, p: (f64, f64)) -> bool {
@@ -604,7 +637,7 @@ mod tests {
             line((-30.0, 2.0), (-6.0, 2.0)),
             line((-30.0, 7.0), (-1.0, 7.0)),
         ];
-        let joined = join_feet_to_merged_legs(&strokes, 4.0, 3.0).into_owned();
+        let joined = joined_feet(&strokes);
         assert_eq!(joined.len(), 2, "{joined:?}");
         let inner = joined
             .iter()
@@ -631,10 +664,7 @@ mod tests {
             hairpin((0.0, 0.0), (0.0, 1.0), 4.0),
             line((-30.0, 2.0), (-6.0, 2.0)),
         ];
-        assert_eq!(
-            join_feet_to_merged_legs(&strokes, 4.0, 3.0).into_owned(),
-            strokes.to_vec()
-        );
+        assert_eq!(joined_feet(&strokes), strokes.to_vec());
     }
 
     #[test]

@@ -25,7 +25,7 @@ use super::closure::{
     close_across_side_by_side_ends, close_curves_ending_on_themselves,
     join_holes_touching_their_outline, thread_loops_through_shared_necks,
 };
-use super::hairpins::{join_feet_to_merged_legs, open_facing_hairpins};
+use super::hairpins::open_hairpins;
 use super::reconstruct::{self, canonical_orientation, Reconstruction};
 use super::through::angle;
 use super::ReconstructError;
@@ -490,13 +490,12 @@ pub fn connect_strokes(
     spacing: f64,
     stroke_width: f64,
 ) -> (Vec<Polyline>, f64) {
-    let strokes: &[Stroke] = &open_facing_hairpins(
+    let strokes: &[Stroke] = &open_hairpins(
         strokes,
         longest_gap_bridge(spacing, stroke_width),
         spacing,
         stroke_width,
     );
-    let strokes: &[Stroke] = &join_feet_to_merged_legs(strokes, spacing, stroke_width);
     let vertices = StrokeVertices::new(strokes, spacing);
     let positions = &vertices.positions;
     let StrokeGraph { mut edges, ends } =
