@@ -1199,11 +1199,16 @@ impl<'a> Matching<'a> {
             .filter(|end| !end.attached)
             .filter_map(|end| Some((end.vertex, end.outward?)))
             .collect();
+        // Each loop's bridges, by index into `matched`, gathered in one pass.
+        let mut of_loop: HashMap<usize, Vec<usize>> = HashMap::new();
+        for (i, m) in matched.iter().enumerate() {
+            let root = groups.root(self.strokes_joined(m).0);
+            if loops.contains(&root) {
+                of_loop.entry(root).or_default().push(i);
+            }
+        }
         let mut dropped = vec![false; matched.len()];
-        for root in loops {
-            let mut bridges: Vec<usize> = (0..matched.len())
-                .filter(|&i| groups.root(self.strokes_joined(matched[i]).0) == root)
-                .collect();
+        for mut bridges in of_loop.into_values() {
             bridges.sort_by(|&x, &y| {
                 self.ink_gap(matched[y])
                     .total_cmp(&self.ink_gap(matched[x]))
