@@ -64,16 +64,16 @@ const MAX_THROUGH_TURN_DEGREES: f64 = 40.0;
 /// dev split: 20° fixes one drawing, 25°–30° two, 40° also breaks a meander.
 const ARM_POINT_MAX_TURN_DEGREES: f64 = 25.0;
 
-/// DECISION: (stop 61) an end that lies within this many arms ([`ARM_IN_SPACINGS`]) of a corner (a pen lift's
-/// length) and does not point at it as measured is tried again along its stroke's own chord (its
-/// direction without the bend carried into it, as the bridges try it): a short piece of a stem
-/// whose last pixels curl by 15° or more points off the corner by more than
+/// DECISION: (stop 61) an end that lies within this many arms ([`ARM_IN_SPACINGS`]) of a corner
+/// (a pen lift's length) and does not point at it as measured is tried again along its stroke's
+/// own chord (its direction without the bend carried into it, as the bridges try it): a short
+/// piece of a stem whose last pixels curl by 15° or more points off the corner by more than
 /// [`MAX_THROUGH_TURN_DEGREES`] (a scanned "P" whose stem has its lift just below the bowl: its
 /// lower piece curled 43° off the corner, 27° along its chord). Farther off, the bend is the
-/// stroke's curving on into the gap, not a curl: at 2.5 arms, a thick animal's ear went on through
-/// a corner of its head 30 px away. Measured on the benchmark (exact of 432): seed 7 +1, nothing
-/// lost on any split, the same from 0.8 to 1.5 arms; validation and seed 4 unchanged; the samples
-/// unchanged.
+/// stroke's curving on into the gap, not a curl: at 2.5 arms, a thick animal's ear went on
+/// through a corner of its head 30 px away. Measured on the benchmark (exact of 432): seed 7 +1,
+/// nothing lost on any split, the same from 0.8 to 1.5 arms; validation and seed 4 unchanged;
+/// the samples unchanged.
 const UNBENT_MAX_IN_ARMS: f64 = 1.0;
 
 /// DECISION: a bridge through a corner costs this plus its straight-bridge cost: it is taken
@@ -184,10 +184,10 @@ pub(super) fn through_candidates(
             let towards = offset / distance;
             let turns = corner.arms.map(|arm| angle(towards, arm));
             let judged = |outward: Vec2| -> Option<(bool, usize, usize, f64, f64)> {
-                // At a hairpin (two lines side by side whose tips touch) both arms run on the way the
-                // end points, and the corner lies between the two lines: the arm the end goes on
-                // into is the one whose line it continues, the nearer across. Elsewhere it is the
-                // one it turns least into, clearly: the other turns off at least twice as much.
+                // At a hairpin (two lines side by side whose tips touch) both arms run on the way
+                // the end points, and the corner lies between the two lines: the arm the end goes
+                // on into is the one whose line it continues, the nearer across. Elsewhere it is
+                // the one it turns least into, clearly: the other turns off at least twice as much.
                 let hairpin = corner
                     .arms
                     .iter()

@@ -603,8 +603,7 @@ fn hairpin_end(walk: &ArcWalk, i: usize, mask: &Bitmap, stroke_width: f64) -> Op
     // inside on the other; a band's flat end has two corners.
     let turned = here + axis * (shift - stroke_width / 2.0);
     let across = Vec2::new(-axis.y, axis.x);
-    let extent =
-        |sign: f64| run(turned, across * sign) + INK_CHECK_STEP_PX / 2.0 - stroke_width / 2.0;
+    let extent = |sign: f64| pen_reach_across(mask, turned, across * sign, stroke_width);
     let (mut left, mut right) = (extent(1.0), extent(-1.0));
     // A staggered flat end ([`STAGGER_BEHIND_IN_PEN_WIDTHS`]), read across the hairpin's rough
     // axis (over the detection arms): the axis over one pen width leans with the rounding where
@@ -652,13 +651,10 @@ fn staggered_side(
     at_end: (f64, f64),
 ) -> Option<(bool, f64)> {
     let across = Vec2::new(-axis.y, axis.x);
-    let limit = MAX_HAIRPIN_REACH_IN_PEN_WIDTHS * stroke_width;
     // How far the pen's centre reaches across on each side, `behind` pen widths back.
     let reach = |behind: f64| {
         let at = turned - axis * (behind * stroke_width);
-        let side = |sign: f64| {
-            ink_run(mask, at, across * sign, limit) + INK_CHECK_STEP_PX / 2.0 - stroke_width / 2.0
-        };
+        let side = |sign: f64| pen_reach_across(mask, at, across * sign, stroke_width);
         on_ink(mask, at).then(|| (side(1.0), side(-1.0)))
     };
     let least = MIN_STAGGER_IN_PEN_WIDTHS * stroke_width;
@@ -687,6 +683,14 @@ fn staggered_side(
             None
         }
     })
+}
+
+/// How far the pen's centre reaches from `from` going the unit `way` at a hairpin's end: half a
+/// pen width inside where the ink ends (read up to [`MAX_HAIRPIN_REACH_IN_PEN_WIDTHS`], the edge
+/// between the last sample on ink and the first off it).
+fn pen_reach_across(mask: &Bitmap, from: Point, way: Vec2, stroke_width: f64) -> f64 {
+    let limit = MAX_HAIRPIN_REACH_IN_PEN_WIDTHS * stroke_width;
+    ink_run(mask, from, way, limit) + INK_CHECK_STEP_PX / 2.0 - stroke_width / 2.0
 }
 
 /// Whether `p` lies on an ink pixel of `mask`.

@@ -410,9 +410,9 @@ fn band_end_cut_with(
             longest.1 - longest.0,
         )))
         .find_map(|(from, to, wide)| {
-            // DECISION: (stop 61) out of a junction, the stroke beyond the band holds no other band:
-            // a spike's side with a pen lift halfway is wide again beyond the lift, and with the
-            // stroke measured from the windows' centres (below) its first piece alone was cut
+            // DECISION: (stop 61) out of a junction, the stroke beyond the band holds no other
+            // band: a spike's side with a pen lift halfway is wide again beyond the lift, and with
+            // the stroke measured from the windows' centres (below) its first piece alone was cut
             // (a scanned spike page lost on seed 5).
             let junction = min_run == BAND_END_MIN_RUN_FROM_JUNCTION_IN_STRETCHES;
             let other_band = |beyond: &dyn Fn(&(usize, usize)) -> bool| {
