@@ -306,9 +306,27 @@ enum BandEnd {
     AtEnd(usize),
 }
 
+/// Which band's end is looked for: a lone dash's, or a band's out of a junction (a branch from
+/// a junction to a free end).
+#[derive(Clone, Copy, PartialEq)]
+enum BandOf {
+    LoneDash,
+    Junction,
+}
+
+impl BandOf {
+    /// The fewest stretches the band's wide windows run on for.
+    fn min_run(self) -> usize {
+        match self {
+            BandOf::LoneDash => BAND_END_MIN_RUN_IN_STRETCHES,
+            BandOf::Junction => BAND_END_MIN_RUN_FROM_JUNCTION_IN_STRETCHES,
+        }
+    }
+}
+
 /// Where a dash with these widths is a band over one end and one stroke over the rest: the
 /// longest run of stretches wider than one stroke ([`BandJudge::is_wide`]) is at least
-/// `min_run` stretches long ([`BAND_END_MIN_RUN_IN_STRETCHES`] for a lone dash,
+/// [`BandOf::min_run`] stretches long ([`BAND_END_MIN_RUN_IN_STRETCHES`] for a lone dash,
 /// [`BAND_END_MIN_RUN_FROM_JUNCTION_IN_STRETCHES`] for a band out of a junction), the end beyond
 /// it (a spike's tip, where its sides close in) no longer than [`BAND_END_MAX_TIP_SHARE`] of the
 /// run, and the stroke on the other side at least [`BAND_END_MIN_STROKE_IN_STRETCHES`] long. The
@@ -330,14 +348,15 @@ enum BandEnd {
 /// a band's two sides, whose second end took the finger's side away from its corner. Measured on the
 /// benchmark: seeds 1, 3, 5 376 → 377, 367 → 368, 364 → 364 (three meanders fixed, a thin spike
 /// lost by 0.3 px); validation 364 → 366, seed 4 366 → 366.
-fn band_end_cut(widths: &[Option<f64>], judge: &BandJudge, min_run: usize) -> Option<BandEnd> {
-    band_end_cut_with(widths, judge, min_run, BAND_END_MIN_STROKE_IN_STRETCHES)
+fn band_end_cut(widths: &[Option<f64>], judge: &BandJudge, of: BandOf) -> Option<BandEnd> {
+    band_end_cut_with(widths, judge, of, BAND_END_MIN_STROKE_IN_STRETCHES)
 }
 
+/// [`band_end_cut`] with the stroke beyond the band at least `min_stroke` stretches long.
 fn band_end_cut_with(
     widths: &[Option<f64>],
     judge: &BandJudge,
-    min_run: usize,
+    of: BandOf,
     min_stroke: usize,
 ) -> Option<BandEnd> {
     let stretch = judge.stretch.max(1);
@@ -414,11 +433,10 @@ fn band_end_cut_with(
             // band: a spike's side with a pen lift halfway is wide again beyond the lift, and with
             // the stroke measured from the windows' centres (below) its first piece alone was cut
             // (a scanned spike page lost on seed 5).
-            let junction = min_run == BAND_END_MIN_RUN_FROM_JUNCTION_IN_STRETCHES;
             let other_band = |beyond: &dyn Fn(&(usize, usize)) -> bool| {
-                junction && runs.iter().any(|run| beyond(run) && wide_all_along(run))
+                of == BandOf::Junction && runs.iter().any(|run| beyond(run) && wide_all_along(run))
             };
-            match band_over_one_end(from, to, wide, n, stretch, min_run, min_stroke) {
+            match band_over_one_end(from, to, wide, n, stretch, of, min_stroke) {
                 Some(BandEnd::AtStart(_)) if other_band(&|run| run.0 > to) => None,
                 Some(BandEnd::AtEnd(_)) if other_band(&|run| run.1 < from) => None,
                 cut => cut,
@@ -480,11 +498,11 @@ fn band_over_one_end(
     wide: usize,
     n: usize,
     stretch: usize,
-    min_run: usize,
+    of: BandOf,
     min_stroke: usize,
 ) -> Option<BandEnd> {
     let run = to - from;
-    if wide == 0 || wide < min_run * stretch {
+    if wide == 0 || wide < of.min_run() * stretch {
         return None;
     }
     // The wide points are from..to + stretch - 1; the tip lies beyond them, the stroke on the
@@ -494,7 +512,7 @@ fn band_over_one_end(
     // DECISION: (stop 61) a band out of a junction measures the stroke beyond it from its wide
     // windows' centres, not their starts, which lie half a stretch into the stroke: a thick
     // meander's line parting from the band, 21 points one stroke wide, counted 15 (seed 6).
-    if min_run == BAND_END_MIN_RUN_FROM_JUNCTION_IN_STRETCHES {
+    if of == BandOf::Junction {
         tip_at_start = from + stretch / 2;
         tip_at_end += (stretch - 1) / 2;
     }
@@ -588,9 +606,10 @@ impl SkeletonGraph {
                 // where one stroke ends. Measured on the benchmark: all five splits unchanged
                 // in count (the leg's top in `--debug` pictures traced right, on an animal that
                 // fails elsewhere).
-                let band_over_one_end = judge.widths.get(b).is_some_and(|widths| {
-                    band_end_cut(widths, &judge, BAND_END_MIN_RUN_IN_STRETCHES).is_some()
-                });
+                let band_over_one_end = judge
+                    .widths
+                    .get(b)
+                    .is_some_and(|widths| band_end_cut(widths, &judge, BandOf::LoneDash).is_some());
                 if !band_over_one_end {
                     new_tips.extend(self.split_if_double(b, &mut judge));
                 }
@@ -694,7 +713,7 @@ impl SkeletonGraph {
         if branch.removed || a == z || branch.strand_of.is_some() || !lone {
             return;
         }
-        let Some(cut) = band_end_cut(&judge.widths[b], judge, BAND_END_MIN_RUN_IN_STRETCHES) else {
+        let Some(cut) = band_end_cut(&judge.widths[b], judge, BandOf::LoneDash) else {
             return;
         };
         self.cut_band_end(b, cut, judge);
@@ -889,17 +908,16 @@ impl SkeletonGraph {
         let (a_junction, z_junction) = (self.degree(a) >= 3, self.degree(z) >= 3);
         let (a_free, z_free) = (self.degree(a) == 1, self.degree(z) == 1);
         if (a_junction && z_free) || (z_junction && a_free) {
-            let band_at_junction =
-                match band_end_cut(&widths, judge, BAND_END_MIN_RUN_FROM_JUNCTION_IN_STRETCHES) {
-                    Some(BandEnd::AtStart(cut)) if a_junction => Some(BandEnd::AtStart(cut)),
-                    Some(BandEnd::AtEnd(cut)) if z_junction => Some(BandEnd::AtEnd(cut)),
-                    _ => None,
-                };
+            let band_at_junction = match band_end_cut(&widths, judge, BandOf::Junction) {
+                Some(BandEnd::AtStart(cut)) if a_junction => Some(BandEnd::AtStart(cut)),
+                Some(BandEnd::AtEnd(cut)) if z_junction => Some(BandEnd::AtEnd(cut)),
+                _ => None,
+            };
             let band_at_junction = band_at_junction.or_else(|| {
                 match band_end_cut_with(
                     &widths,
                     judge,
-                    BAND_END_MIN_RUN_FROM_JUNCTION_IN_STRETCHES,
+                    BandOf::Junction,
                     PARTING_MIN_STROKE_IN_STRETCHES,
                 )? {
                     BandEnd::AtStart(cut)
@@ -1055,10 +1073,7 @@ fn side_offsets(
 
 #[cfg(test)]
 mod tests {
-    use super::{
-        band_end_cut, BandEnd, BandJudge, BAND_END_MIN_RUN_IN_STRETCHES,
-        BAND_GAP_REACH_IN_PEN_WIDTHS,
-    };
+    use super::{band_end_cut, BandEnd, BandJudge, BandOf, BAND_GAP_REACH_IN_PEN_WIDTHS};
     use crate::raster::bitmap::Bitmap;
     use crate::raster::clean::tests::draw_line;
     use crate::raster::thin::thin;
@@ -1334,7 +1349,7 @@ mod tests {
         let spike = widths(&[(6.0, 13), (3.0, 8), (5.5, 14), (3.0, 30)]);
         assert!(
             matches!(
-                band_end_cut(&spike, &judge(), BAND_END_MIN_RUN_IN_STRETCHES),
+                band_end_cut(&spike, &judge(), BandOf::LoneDash),
                 Some(BandEnd::AtStart(cut)) if cut >= 32
             ),
             "the band runs from the tip to the dash's stroke"
@@ -1342,7 +1357,7 @@ mod tests {
         // The control: one pen wide between two points where a corner's cross-section runs
         // along the other arm: wide windows only where the mean takes in the corner.
         let corners = widths(&[(3.0, 40), (12.0, 3), (3.0, 8), (12.0, 3), (3.0, 30)]);
-        assert!(band_end_cut(&corners, &judge(), BAND_END_MIN_RUN_IN_STRETCHES).is_none());
+        assert!(band_end_cut(&corners, &judge(), BandOf::LoneDash).is_none());
     }
 
     #[test]
@@ -1355,7 +1370,7 @@ mod tests {
         let dash = widths(&[(3.0, 18), (6.0, 20), (3.0, 8), (6.0, 14)]);
         assert!(
             matches!(
-                band_end_cut(&dash, &judge(), BAND_END_MIN_RUN_IN_STRETCHES),
+                band_end_cut(&dash, &judge(), BandOf::LoneDash),
                 Some(BandEnd::AtEnd(cut)) if cut >= 36
             ),
             "the band runs from the finger's tip back to the corner"
