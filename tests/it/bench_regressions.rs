@@ -1,7 +1,7 @@
 //! Development drawings of the benchmark (`examples/make_bench`) that a reconstruction rule was
 //! made for trace exactly: generated in memory, traced with the defaults and scored as
 //! `bench_score` scores them. Each names the rule it stands for; only development seeds appear
-//! here (seed 2 is the validation split and seed 4 is held out, docs/benchmark.md).
+//! here (seeds 2 and 12 are validation splits and seed 4 is held out, docs/benchmark.md).
 
 use super::bench_generator::{drawing, families};
 use crate::support;
@@ -241,4 +241,12 @@ fn an_ear_whose_one_side_leads_is_a_staggered_tip_not_a_cusp() {
 fn a_short_line_parting_from_a_thick_band_cuts_the_band_where_it_ends() {
     assert_traces_exactly(3, "meanders", "thick", 4);
     assert_traces_exactly(6, "meanders", "thick", 3);
+}
+
+/// A thick pen's small ellipse whose closing gap, a twelfth of it, measured a sixth through the
+/// corner where its ends' lines meet: the gap of a round loop is measured along the arc
+/// (`loop_ink_gap`, stop 62), and the ellipse closes.
+#[test]
+fn a_round_loops_closing_gap_is_measured_along_its_arc() {
+    assert_traces_exactly(11, "closing", "thick", 14);
 }
