@@ -250,3 +250,14 @@ fn a_short_line_parting_from_a_thick_band_cuts_the_band_where_it_ends() {
 fn a_round_loops_closing_gap_is_measured_along_its_arc() {
     assert_traces_exactly(11, "closing", "thick", 14);
 }
+
+/// Two animals whose foot's top and the leg's inner corner fell in one pen lift: the leg's inner
+/// side ends above the foot, the toe's short stroke up from the sole ends at the foot's top, and
+/// the two ends face each other side by side; the straight bridge between them is drawn as a step
+/// through a corner on the leg's line abreast of the toe's end, not as a diagonal cutting the
+/// corner (`FACING_STEP_MIN_ACROSS_IN_PEN_WIDTHS`).
+#[test]
+fn a_foots_top_lost_with_the_legs_corner_is_drawn_as_a_step() {
+    assert_traces_exactly(11, "animals", "thick", 11);
+    assert_traces_exactly(11, "animals", "thin", 15);
+}
