@@ -9,6 +9,7 @@ use std::time::{Duration, Instant};
 use image::{DynamicImage, GrayImage};
 
 use crate::crawl::band_gaps::join_band_tips_across_gaps;
+use crate::crawl::bases::splice_protrusions_at_their_base;
 use crate::crawl::contacts::{
     drop_covered_open_curves, drop_redundant_arcs, join_lassos, join_loops_to_open_curves,
     join_touching_loops, splice_loops_into_bridges,
@@ -226,6 +227,7 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
         join_band_tips_across_gaps(&mut curves, stroke_width);
         // The stages since the first check can leave a piece beside a path that covers it.
         drop_covered_open_curves(&mut curves, stroke_width);
+        splice_protrusions_at_their_base(&mut curves, stroke_width);
         splice_leftover_legs(&mut curves, stroke_width);
         restore_tips(&mut curves, &raster.mask, stroke_width);
         untwist_curves(&mut curves, stroke_width);

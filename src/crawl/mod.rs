@@ -10,6 +10,7 @@
 pub mod algorithm;
 pub mod band_gaps;
 mod bands;
+pub mod bases;
 mod bridges;
 mod closure;
 pub mod contacts;

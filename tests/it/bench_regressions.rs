@@ -261,3 +261,21 @@ fn a_foots_top_lost_with_the_legs_corner_is_drawn_as_a_step() {
     assert_traces_exactly(11, "animals", "thick", 11);
     assert_traces_exactly(11, "animals", "thin", 15);
 }
+
+/// A clean animal's tail and a thick animal's leg, each traced out along one side and back along
+/// the other as an open curve whose two ends stand a pen lift short of the body, while the body's
+/// outline closed across the base: the open curve replaces that stretch of the outline
+/// (`splice_protrusions_at_their_base`).
+#[test]
+fn a_protrusion_cut_off_at_its_base_is_spliced_into_the_outline() {
+    assert_traces_exactly(11, "animals", "clean", 18);
+    assert_traces_exactly(11, "animals", "thick", 22);
+}
+
+/// A clean animal's leg traced as a sliver of its own, its band's tip a short gap below the
+/// body's stub and a pen width and a half beside it: the tip takes in the body (stop 62, a foot
+/// abreast of the band's line in `join_band_tips_across_gaps`).
+#[test]
+fn a_band_tip_beside_the_body_stub_across_a_short_gap_takes_it_in() {
+    assert_traces_exactly(11, "animals", "clean", 15);
+}
