@@ -16,6 +16,7 @@ mod closure;
 pub mod contacts;
 pub mod crossings;
 mod hairpins;
+pub mod hooks;
 pub mod legs;
 pub mod neighbours;
 pub mod outline_gaps;

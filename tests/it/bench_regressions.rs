@@ -279,3 +279,13 @@ fn a_protrusion_cut_off_at_its_base_is_spliced_into_the_outline() {
 fn a_band_tip_beside_the_body_stub_across_a_short_gap_takes_it_in() {
     assert_traces_exactly(11, "animals", "clean", 15);
 }
+
+/// A balloon whose loop's pen lift fell just beside its string: the skeleton ran up the string
+/// and on along the loop's stub beyond the junction, so the string's end hooked along the loop
+/// by two to three pen widths. The hook is dropped and the string ends where its own line meets
+/// the loop (`trim_hooked_ends`).
+#[test]
+fn a_strings_end_hooked_along_the_loop_it_meets_is_cut_back_to_the_junction() {
+    assert_traces_exactly(11, "objects", "clean", 2);
+    assert_traces_exactly(11, "objects", "clean", 22);
+}
