@@ -289,3 +289,11 @@ fn a_strings_end_hooked_along_the_loop_it_meets_is_cut_back_to_the_junction() {
     assert_traces_exactly(11, "objects", "clean", 2);
     assert_traces_exactly(11, "objects", "clean", 22);
 }
+
+/// A house whose window, a thick pen's small square, had two corners pushed out along its
+/// diagonals: round a loop shorter than six tip arms every corner's arms reach past the next
+/// corners, and no tip is read there (`MIN_LOOP_IN_ARMS`, stop 62).
+#[test]
+fn a_small_loops_corners_are_not_read_as_tips() {
+    assert_traces_exactly(11, "objects", "thick", 4);
+}
