@@ -50,8 +50,8 @@ const WALK_STEP_PX: f64 = 0.5;
 /// whose pen lift fell beside the string) runs on from the meeting line along that stroke's stub
 /// to its tip. The hook is dropped, and the curve ends where its own line
 /// (from [`OWN_LINE_FROM_IN_PEN_WIDTHS`] past the hook, over [`OWN_LINE_IN_PEN_WIDTHS`]) meets the
-/// other line within [`MEET_REACH_IN_PEN_WIDTHS`]. Last of the stages: a hook is judged on the
-/// curves as they are output, after every join. Measured on the benchmark (exact): seed 11
+/// other line within [`MEET_REACH_IN_PEN_WIDTHS`]. After every join but the lasso's rope
+/// ([`super::necks`]): a hook is judged on the curves as they are output. Measured on the benchmark (exact): seed 11
 /// 1544 → 1550 of 1728 (six balloons' strings, objects clean, scan and thin), seeds 5 and 8 +1
 /// each (a balloon each), seeds 1, 3, 6, 7 unchanged, nothing lost on any split; validation seed
 /// 2 unchanged and seed 12 +3, held-out seed 4 +4; no exact drawing's worst distance grew. The

@@ -18,6 +18,7 @@ pub mod crossings;
 mod hairpins;
 pub mod hooks;
 pub mod legs;
+pub mod necks;
 pub mod neighbours;
 pub mod outline_gaps;
 pub mod reconstruct;

@@ -297,3 +297,13 @@ fn a_strings_end_hooked_along_the_loop_it_meets_is_cut_back_to_the_junction() {
 fn a_small_loops_corners_are_not_read_as_tips() {
     assert_traces_exactly(11, "objects", "thick", 4);
 }
+
+/// Lassos whose two lines run merged up the neck: one rope goes up it and round the loop, ending
+/// free where the loop comes back to the neck, and the other rope ends on (or a pen lift short
+/// of) the first where the two part; it is threaded up the neck and round the loop (stop 62,
+/// `thread_ropes_up_merged_necks`).
+#[test]
+fn a_lassos_second_rope_ending_on_the_neck_goes_up_it_and_round_the_loop() {
+    assert_traces_exactly(11, "meanders", "thick", 0);
+    assert_traces_exactly(11, "meanders", "scan", 7);
+}
