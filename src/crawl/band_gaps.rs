@@ -11,9 +11,8 @@
 use kurbo::Vec2;
 
 use super::bands::{Foot, SegmentGrid, BASE_GAP_MAX_IN_PEN_WIDTHS, BASE_MAX_TURN_DEGREES};
-use super::bases::inside;
 use super::remove_marked;
-use crate::geometry::polyline::point_along;
+use crate::geometry::polyline::{point_along, polygon_contains};
 use crate::geometry::Polyline;
 
 /// A U-turn's two arms are read this many pen widths back from its tip.
@@ -109,7 +108,7 @@ fn join_band_tips_once(curves: &mut Vec<Polyline>, stroke_width: f64) -> bool {
             // that nested shape. Validation and seed 4 unchanged.
             let abreast = tip.axis.dot(towards) > 0.0
                 && tip.axis.cross(towards).abs() <= ARMS_APART_MAX_IN_PEN_WIDTHS * stroke_width
-                && !inside(&curves[foot.curve].points, at);
+                && !polygon_contains(&curves[foot.curve].points, at);
             (length > 0.0 && (tip.axis.dot(towards / length) >= max_turn || abreast))
                 .then_some((tip, foot))
         })

@@ -9,7 +9,7 @@ use kurbo::{Line, ParamCurve, ParamCurveNearest, Point};
 
 use super::bands::BASE_GAP_MAX_IN_PEN_WIDTHS;
 use super::remove_marked;
-use crate::geometry::polyline::{bounding_box, Polyline};
+use crate::geometry::polyline::{bounding_box, polygon_contains, polyline_length, Polyline};
 
 /// The protrusion reaches out from the middle between its two ends at least this many times as
 /// far as its ends lie apart: it goes out and comes back (a tail, a leg), where a stroke whose
@@ -78,7 +78,7 @@ pub fn splice_protrusions_at_their_base(curves: &mut Vec<Polyline>, stroke_width
                 // inside a house, its ends on the floor, is a line of its own. Without this
                 // test three thick houses' doors went into their outlines (seeds 3, 8 and 11
                 // lost one drawing each).
-                if inside(ring, tip) {
+                if polygon_contains(ring, tip) {
                     return None;
                 }
                 let foot_a = nearest_on_ring(ring, a)?;
@@ -93,7 +93,10 @@ pub fn splice_protrusions_at_their_base(curves: &mut Vec<Polyline>, stroke_width
         let there = forward(ring, foot_a, foot_b, true);
         // Two feet at one point: the way back is once round.
         let back = forward(ring, foot_b, foot_a, false);
-        let (there_length, back_length) = (length(&there), length(&back));
+        let (there_length, back_length) = (
+            polyline_length(&there, false),
+            polyline_length(&back, false),
+        );
         // The stretch across the base is the shorter one, about as long as the ends lie apart
         // plus the two gaps to them.
         let across_max = apart + 2.0 * reach;
@@ -153,24 +156,6 @@ fn forward(
     }
     points.push(at(to));
     points
-}
-
-/// Whether `p` lies inside the closed curve `ring` (even-odd rule).
-pub(super) fn inside(ring: &[Point], p: Point) -> bool {
-    let n = ring.len();
-    let mut inside = false;
-    for k in 0..n {
-        let (u, v) = (ring[k], ring[(k + 1) % n]);
-        if (u.y > p.y) != (v.y > p.y) && p.x < u.x + (p.y - u.y) / (v.y - u.y) * (v.x - u.x) {
-            inside = !inside;
-        }
-    }
-    inside
-}
-
-/// The length of the polyline through `points`.
-fn length(points: &[Point]) -> f64 {
-    points.windows(2).map(|w| w[0].distance(w[1])).sum()
 }
 
 #[cfg(test)]

@@ -21,7 +21,7 @@ use super::bridges::BridgeableEnd;
 use super::strokes::{components, StrokeVertices};
 use super::through::angle;
 use crate::geometry::grid::PointGrid;
-use crate::geometry::polyline::{distances_along, polyline_length, signed_area};
+use crate::geometry::polyline::{distances_along, polygon_contains, polyline_length, signed_area};
 use crate::geometry::Polyline;
 
 /// DECISION: two free ends side by side are at most this far apart (centre to centre, in widths
@@ -651,7 +651,7 @@ pub(super) fn join_holes_touching_their_outline(
                         .iter()
                         .all(|c| inner.points[c.k].distance(**p) > 2.0 * touch)
                 })
-                .all(|&p| contains(&outline.points, p));
+                .all(|&p| polygon_contains(&outline.points, p));
             let share = touching_samples.len() as f64 / inner.points.len() as f64;
             if share > HOLE_TOUCH_MAX_SHARE || !inside {
                 continue;
@@ -844,19 +844,6 @@ fn roundness(points: &[Point]) -> f64 {
     }
     // `signed_area` gives twice the area.
     2.0 * std::f64::consts::PI * signed_area(points).abs() / (perimeter * perimeter)
-}
-
-/// Whether `p` lies inside the closed polygon `points` (even-odd rule).
-fn contains(points: &[Point], p: Point) -> bool {
-    let n = points.len();
-    let mut inside = false;
-    for k in 0..n {
-        let (a, b) = (points[k], points[(k + 1) % n]);
-        if (a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x) {
-            inside = !inside;
-        }
-    }
-    inside
 }
 
 #[cfg(test)]

@@ -9,7 +9,7 @@ use kurbo::{Line, Point, Vec2};
 
 use super::remove_marked;
 use super::spikes::SegmentGrid;
-use crate::geometry::polyline::{distance_to_segment, Polyline};
+use crate::geometry::polyline::{distance_to_segment, distances_along, Polyline};
 
 /// The rope's end lies within this much (pen widths) of the other curve's line: the merged neck's
 /// centre line lies half a pen width or so off each line's centre, and where the rope's pen
@@ -105,19 +105,6 @@ pub fn thread_ropes_up_merged_necks(curves: &mut Vec<Polyline>, stroke_width: f6
     remove_marked(curves, &dropped);
 }
 
-/// Cumulative length along `points`.
-fn arc_lengths(points: &[Point]) -> Vec<f64> {
-    let mut out = Vec::with_capacity(points.len());
-    let mut total = 0.0;
-    for (k, p) in points.iter().enumerate() {
-        if k > 0 {
-            total += points[k - 1].distance(*p);
-        }
-        out.push(total);
-    }
-    out
-}
-
 /// Where the rope's end (curve `rope`, at its last point or first) ends on curve `other`'s merged
 /// neck: the points the rope goes on through (up the neck, then from the loop's free end along
 /// the whole other curve).
@@ -134,7 +121,7 @@ fn rope_up_neck(
     }
     let end = *rope_points.last()?;
     // The rope's end direction, pointing out of the end.
-    let rope_lengths = arc_lengths(&rope_points);
+    let rope_lengths = distances_along(&rope_points);
     let rope_total = *rope_lengths.last()?;
     let reach_back = ROPE_DIRECTION_IN_PEN_WIDTHS * stroke_width;
     if rope_total < reach_back {
@@ -155,7 +142,7 @@ fn rope_up_neck(
         if !loop_at_first {
             points.reverse();
         }
-        let lengths = arc_lengths(&points);
+        let lengths = distances_along(&points);
         let total = *lengths.last()?;
         // The rope's end on the other curve's line: the nearest segment.
         let (s, distance) = (0..points.len() - 1)

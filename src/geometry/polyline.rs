@@ -60,6 +60,19 @@ pub(crate) fn within_of_chain(p: Point, points: &[Point], reach: f64) -> bool {
         .any(|pair| distance_to_segment(p, kurbo::Line::new(pair[0], pair[1])) <= reach)
 }
 
+/// Whether `p` lies inside the closed polygon `ring` (even-odd rule).
+pub(crate) fn polygon_contains(ring: &[Point], p: Point) -> bool {
+    let n = ring.len();
+    let mut inside = false;
+    for k in 0..n {
+        let (u, v) = (ring[k], ring[(k + 1) % n]);
+        if (u.y > p.y) != (v.y > p.y) && p.x < u.x + (p.y - u.y) / (v.y - u.y) * (v.x - u.x) {
+            inside = !inside;
+        }
+    }
+    inside
+}
+
 /// The bounding box of `points` (at least one).
 pub(crate) fn bounding_box(points: &[Point]) -> Rect {
     points
