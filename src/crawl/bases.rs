@@ -9,7 +9,7 @@ use kurbo::{Line, ParamCurve, ParamCurveNearest, Point};
 
 use super::bands::BASE_GAP_MAX_IN_PEN_WIDTHS;
 use super::remove_marked;
-use crate::geometry::polyline::{bounding_box, polygon_contains, polyline_length, Polyline};
+use crate::geometry::polyline::{grown_bounding_box, polygon_contains, polyline_length, Polyline};
 
 /// The protrusion reaches out from the middle between its two ends at least this many times as
 /// far as its ends lie apart: it goes out and comes back (a tail, a leg), where a stroke whose
@@ -35,13 +35,7 @@ pub fn splice_protrusions_at_their_base(curves: &mut Vec<Polyline>, stroke_width
         return;
     }
     let reach = BASE_GAP_MAX_IN_PEN_WIDTHS * stroke_width;
-    let grown = |curve: &Polyline| {
-        if curve.points.is_empty() {
-            kurbo::Rect::ZERO
-        } else {
-            bounding_box(&curve.points).inflate(reach, reach)
-        }
-    };
+    let grown = |curve: &Polyline| grown_bounding_box(&curve.points, reach);
     let mut boxes: Vec<kurbo::Rect> = curves.iter().map(grown).collect();
     let mut removed = vec![false; curves.len()];
     for o in 0..curves.len() {

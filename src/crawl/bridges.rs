@@ -647,9 +647,9 @@ impl<'a> Matching<'a> {
                 None if remaining[&b] == 0 => continue,
                 None => self.stroke_of[&b],
             };
-            if typical_gap.is_some_and(|typical| {
-                self.loop_ink_gap(candidate) > LOOP_GAP_MAX_IN_TYPICAL_GAPS * typical
-            }) {
+            let loop_gap = self.loop_ink_gap(candidate);
+            if typical_gap.is_some_and(|typical| loop_gap > LOOP_GAP_MAX_IN_TYPICAL_GAPS * typical)
+            {
                 continue;
             }
             let stroke_a = self.stroke_of[&a];
@@ -667,8 +667,8 @@ impl<'a> Matching<'a> {
                 let gap = self.ink_gap(candidate);
                 let within_limit = gap <= BRIDGE_MAX_IN_TYPICAL_GAPS * typical
                     || (closes_loop
-                        && self.loop_ink_gap(candidate) <= LOOP_GAP_MAX_IN_TYPICAL_GAPS * typical
-                        && self.closes_clearly(candidate, loop_length, remaining));
+                        && loop_gap <= LOOP_GAP_MAX_IN_TYPICAL_GAPS * typical
+                        && self.closes_clearly(candidate, loop_gap, loop_length, remaining));
                 if !within_limit {
                     still_pending.push(index);
                     continue;
@@ -1344,10 +1344,11 @@ impl<'a> Matching<'a> {
     /// that gap: a small part of the loop ([`LOOP_GAP_MAX_SHARE_WIDE`], counted on its ink gap),
     /// the two ends facing each other (a straight bridge, or a corner), and no other free end
     /// still open nearer to either end than the bridge is long (which would make the closing a
-    /// guess between partners).
+    /// guess between partners). `loop_gap` is the candidate's [`Matching::loop_ink_gap`].
     fn closes_clearly(
         &self,
         candidate: &Candidate,
+        loop_gap: f64,
         loop_length: f64,
         remaining: &HashMap<u32, u8>,
     ) -> bool {
@@ -1356,7 +1357,7 @@ impl<'a> Matching<'a> {
         // pulls back half a pen width at each end: a thick pen's small circle (r 45 px, pen 7 px)
         // whose closing gap is 13 % of it had a 15.3 % bridge and stayed open. Measured on the
         // benchmark: one closing drawing fixed on seed 3 and one on validation, none lost.
-        if self.loop_ink_gap(candidate) > LOOP_GAP_MAX_SHARE_WIDE * loop_length {
+        if loop_gap > LOOP_GAP_MAX_SHARE_WIDE * loop_length {
             return false;
         }
         let positions = &self.vertices.positions;

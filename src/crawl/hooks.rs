@@ -74,13 +74,19 @@ pub fn trim_hooked_ends(curves: &mut [Polyline], stroke_width: f64) {
             continue;
         }
         for from_last in [false, true] {
+            let end = if from_last {
+                curve.points[curve.points.len() - 1]
+            } else {
+                curve.points[0]
+            };
+            // Only an end on another curve's line is read on, from a copy starting there.
+            let Some(other) = other_curve_under(&grid, curves, end, i, on) else {
+                continue;
+            };
             let mut points = curve.points.clone();
             if from_last {
                 points.reverse();
             }
-            let Some(other) = other_curve_under(&grid, curves, points[0], i, on) else {
-                continue;
-            };
             if let Some((keep_from, meet)) = hook(&points, curves, other, &grid, stroke_width) {
                 trims.push((i, from_last, keep_from, meet));
             }

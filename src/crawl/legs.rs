@@ -5,7 +5,7 @@
 
 use kurbo::{Line, ParamCurve, ParamCurveNearest, Point};
 
-use crate::geometry::polyline::{bounding_box, points_round_after, Polyline};
+use crate::geometry::polyline::{grown_bounding_box, points_round_after, Polyline};
 
 /// An end of the leg lies on a pass of the outline within this much of it (pen widths).
 const LEG_END_ON_OUTLINE_IN_PEN_WIDTHS: f64 = 1.5;
@@ -28,13 +28,7 @@ pub fn splice_leftover_legs(curves: &mut Vec<Polyline>, stroke_width: f64) {
     let reach = LEG_END_ON_OUTLINE_IN_PEN_WIDTHS * stroke_width;
     // Each outline's box grown by the reach: a page of noise holds thousands of curves, and only
     // an outline whose box holds both of a leg's ends is looked at closely.
-    let grown = |curve: &Polyline| {
-        if curve.points.is_empty() {
-            kurbo::Rect::ZERO
-        } else {
-            bounding_box(&curve.points).inflate(reach, reach)
-        }
-    };
+    let grown = |curve: &Polyline| grown_bounding_box(&curve.points, reach);
     let mut boxes: Vec<kurbo::Rect> = curves.iter().map(grown).collect();
     let mut i = 0;
     while i < curves.len() {

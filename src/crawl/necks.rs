@@ -68,10 +68,8 @@ pub fn thread_ropes_up_merged_necks(curves: &mut Vec<Polyline>, stroke_width: f6
             continue;
         }
         'ends: for rope_at_last in [true, false] {
-            let end = if rope_at_last {
-                points[points.len() - 1]
-            } else {
-                points[0]
+            let Some((end, rope_way)) = rope_end_way(points, rope_at_last, stroke_width) else {
+                continue;
             };
             let mut others: Vec<usize> = grid
                 .around(end)
@@ -84,7 +82,7 @@ pub fn thread_ropes_up_merged_necks(curves: &mut Vec<Polyline>, stroke_width: f6
                 if used[rope] || used[other] {
                     continue;
                 }
-                if let Some(tail) = rope_up_neck(curves, rope, rope_at_last, other, stroke_width) {
+                if let Some(tail) = rope_up_neck(curves, (end, rope_way), other, stroke_width) {
                     used[rope] = true;
                     used[other] = true;
                     joins.push((rope, rope_at_last, other, tail));
@@ -105,22 +103,14 @@ pub fn thread_ropes_up_merged_necks(curves: &mut Vec<Polyline>, stroke_width: f6
     remove_marked(curves, &dropped);
 }
 
-/// Where the rope's end (curve `rope`, at its last point or first) ends on curve `other`'s merged
-/// neck: the points the rope goes on through (up the neck, then from the loop's free end along
-/// the whole other curve).
-fn rope_up_neck(
-    curves: &[Polyline],
-    rope: usize,
-    rope_at_last: bool,
-    other: usize,
-    stroke_width: f64,
-) -> Option<Vec<Point>> {
-    let mut rope_points = curves[rope].points.clone();
-    if !rope_at_last {
+/// The end of the open curve `points` (its last point, or its first) and the way it points out
+/// of it, read over [`ROPE_DIRECTION_IN_PEN_WIDTHS`]; none where the curve is shorter.
+fn rope_end_way(points: &[Point], at_last: bool, stroke_width: f64) -> Option<(Point, Vec2)> {
+    let mut rope_points = points.to_vec();
+    if !at_last {
         rope_points.reverse();
     }
     let end = *rope_points.last()?;
-    // The rope's end direction, pointing out of the end.
     let rope_lengths = distances_along(&rope_points);
     let rope_total = *rope_lengths.last()?;
     let reach_back = ROPE_DIRECTION_IN_PEN_WIDTHS * stroke_width;
@@ -134,9 +124,19 @@ fn rope_up_neck(
         .find(|(_, &l)| rope_total - l >= reach_back)
         .map(|(p, _)| *p)?;
     let rope_way = end - back;
-    if rope_way.hypot() <= f64::EPSILON {
-        return None;
-    }
+    (rope_way.hypot() > f64::EPSILON).then_some((end, rope_way))
+}
+
+/// Where the rope's end (`end`, pointing out along `rope_way`) ends on curve `other`'s merged
+/// neck: the points the rope goes on through (up the neck, then from the loop's free end along
+/// the whole other curve).
+fn rope_up_neck(
+    curves: &[Polyline],
+    (end, rope_way): (Point, Vec2),
+    other: usize,
+    stroke_width: f64,
+) -> Option<Vec<Point>> {
+    let reach_back = ROPE_DIRECTION_IN_PEN_WIDTHS * stroke_width;
     for loop_at_first in [true, false] {
         let mut points = curves[other].points.clone();
         if !loop_at_first {

@@ -60,6 +60,15 @@ pub(crate) fn within_of_chain(p: Point, points: &[Point], reach: f64) -> bool {
         .any(|pair| distance_to_segment(p, kurbo::Line::new(pair[0], pair[1])) <= reach)
 }
 
+/// The box of `points` grown by `reach` on every side; an empty box for no points.
+pub(crate) fn grown_bounding_box(points: &[Point], reach: f64) -> Rect {
+    if points.is_empty() {
+        Rect::ZERO
+    } else {
+        bounding_box(points).inflate(reach, reach)
+    }
+}
+
 /// Whether `p` lies inside the closed polygon `ring` (even-odd rule).
 pub(crate) fn polygon_contains(ring: &[Point], p: Point) -> bool {
     let n = ring.len();
