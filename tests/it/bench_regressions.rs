@@ -307,3 +307,14 @@ fn a_lassos_second_rope_ending_on_the_neck_goes_up_it_and_round_the_loop() {
     assert_traces_exactly(11, "meanders", "thick", 0);
     assert_traces_exactly(11, "meanders", "scan", 7);
 }
+
+/// Thick letters drawn in few strokes: the top of one letter's stem was joined along the cap
+/// line to the next letter's bar (a "U" into a "Z", a "W" into a "T"), a corner bridge through
+/// the stem's tip 1.8–2.0 typical gaps long; such a bridge may be at most 1.8 where it closes no
+/// loop (`TIP_CORNER_MAX_IN_TYPICAL_GAPS`, stop 63).
+#[test]
+fn a_corner_through_a_letters_tip_does_not_reach_across_to_the_next_letter() {
+    assert_traces_exactly(11, "letters", "thick", 13);
+    assert_traces_exactly(11, "letters", "thick", 18);
+    assert_traces_exactly(8, "letters", "thick", 1);
+}
