@@ -61,9 +61,6 @@ struct Candidate {
     /// Whether it is a corner bridge drawn through one of its own ends' tips that turns there
     /// by more than a straight bridge may ([`TIP_CORNER_MAX_IN_TYPICAL_GAPS`]).
     tip_corner: bool,
-    /// Whether it turns across a flat end ([`flat_end_candidate`]): taken only where it closes
-    /// a loop.
-    flat_end: bool,
     /// Whether both ends are free ends (a pen lift, which the typical gap is measured on).
     between_free_ends: bool,
     /// For a bridge from the free end `a` on through a corner `b` of another stroke
@@ -671,10 +668,6 @@ impl<'a> Matching<'a> {
             }
             let stroke_a = self.stroke_of[&a];
             let closes_loop = groups.same(stroke_a, stroke_b);
-            if candidate.flat_end && !closes_loop {
-                still_pending.push(index);
-                continue;
-            }
             let loop_length = groups.length(stroke_a) + length;
             // DECISION: a bridge that closes a loop must be short next to the loop: at most a
             // quarter of its length. A skip-stroke gap is a small part of the outline it
@@ -1662,13 +1655,6 @@ fn bridge_candidates(
         // DECISION: two ends of lines side by side are never bridged, wherever the lines of
         // their curling tips meet ([`lines_side_by_side`]).
         if lines_side_by_side(vertices, &a, &b, stroke_width) {
-            candidates.extend(flat_end_candidate(
-                vertices,
-                &segments,
-                &a,
-                &b,
-                stroke_width,
-            ));
             continue;
         }
         if one_behind_the_other(vertices, &a, &b, stroke_width)
@@ -1803,7 +1789,6 @@ fn bridge_candidates(
                 b: b.vertex,
                 corner: shape.corner,
                 tip_corner,
-                flat_end: false,
                 // A cusp is not a pen lift across the line: not part of the typical gap.
                 between_free_ends: !a.attached && !b.attached && !shape.cusp && !shape.step,
                 through: None,
@@ -1832,7 +1817,6 @@ fn bridge_candidates(
         alongside: 0.0,
         corner: None,
         tip_corner: false,
-        flat_end: false,
         between_free_ends: false,
         through: Some(c.through),
     }));
@@ -2312,7 +2296,6 @@ fn turn_back_along_stub(
         b: b.vertex,
         corner: None,
         tip_corner: false,
-        flat_end: false,
         between_free_ends: false,
         through: None,
     })
@@ -3412,95 +3395,6 @@ const CUSP_MAX_SPREAD_DEGREES: f64 = 60.0;
 /// gains one, seed 4 −1. Trying the ends' chord ways too ([`unbent`]) changed nothing.
 const STAGGERED_TIP_MIN_LEAD_IN_PEN_WIDTHS: f64 = 0.75;
 
-/// How far apart across their way (pen widths) the two sides of a flat end may lie
-/// ([`flat_end_candidate`]): a leg or a finger two pen widths wide.
-const FLAT_END_MAX_ACROSS_IN_PEN_WIDTHS: f64 = 2.0;
-
-/// How far one side of a flat end may stop short of the other (pen widths), its corner then
-/// put back abreast of the other's end ([`flat_end_candidate`]).
-const FLAT_END_MAX_LEAD_IN_PEN_WIDTHS: f64 = 2.5;
-
-/// How far ahead of each end (pen widths) a flat end's paper must be clear of other strokes
-/// ([`flat_end_candidate`]).
-const FLAT_END_CLEAR_AHEAD_IN_PEN_WIDTHS: f64 = 3.0;
-
-/// A flat end's bridge costs this plus its length: after every other bridge, the cusps too.
-const FLAT_END_COST_OFFSET: f64 = 3e9;
-
-/// DECISION: (stop 63) two lines side by side ([`lines_side_by_side`], never bridged as such)
-/// turn into each other across a flat end where the pen lift took the whole end: a leg's foot, a
-/// finger's or a blunt spike's tip drawn as a short stroke that fell in a pen lift. The two
-/// sides lie at most [`FLAT_END_MAX_ACROSS_IN_PEN_WIDTHS`] apart across their way, one stopping
-/// at most [`FLAT_END_MAX_LEAD_IN_PEN_WIDTHS`] short of the other (its corner put back abreast
-/// of the other's end, as a staggered tip's is, [`abreast`]), and no other stroke lies ahead of
-/// either end within [`FLAT_END_CLEAR_AHEAD_IN_PEN_WIDTHS`]: a dumbbell's neck whose two sides
-/// stop a pen lift short of the circle they run into has the circle ahead, and sealed the neck
-/// across. The bridge is taken last of all ([`FLAT_END_COST_OFFSET`]) and only where it closes
-/// a loop: two parallel lines that end side by side stay two open lines (an outline's flat end
-/// joins two sides that go round the shape to each other). Measured on the benchmark (exact):
-/// seed 11 +1 (a spike's blunt tip), seed 7 +1, nothing lost on development; validation seed 12
-/// +1 −1, seed 2 and seed 4 unchanged; no drawing's worst distance grows. Without the paper
-/// ahead clear, seed 8 loses that dumbbell; in the prototype 3 and 5 pen widths ahead measured
-/// the same, as did 2 and 3 pen widths across. A leg's foot lost in a pen lift (seed 11
-/// `animals-scan-017`) is such a flat end too, but its other side does not reach the body there,
-/// so the foot closes no loop and is not bridged.
-fn flat_end_candidate(
-    vertices: &StrokeVertices,
-    segments: &StrokeSegments,
-    a: &BridgeableEnd,
-    b: &BridgeableEnd,
-    stroke_width: f64,
-) -> Option<Candidate> {
-    let (ua, ub) = free_ends_ways(a, b)?;
-    if a.stroke == b.stroke {
-        return None;
-    }
-    let way = (ua + ub).normalize();
-    let chord = b.at - a.at;
-    let lead = chord.dot(way);
-    if lead.abs() > FLAT_END_MAX_LEAD_IN_PEN_WIDTHS * stroke_width
-        || chord.cross(way).abs() > FLAT_END_MAX_ACROSS_IN_PEN_WIDTHS * stroke_width
-    {
-        return None;
-    }
-    let clear_ahead = |end: &BridgeableEnd, out: Vec2| {
-        let reach = FLAT_END_CLEAR_AHEAD_IN_PEN_WIDTHS * stroke_width;
-        let step = 0.5 * stroke_width;
-        (0..)
-            .map(|k| stroke_width + step * f64::from(k))
-            .take_while(|&t| t <= reach)
-            .all(|t| {
-                segments
-                    .near(vertices, end.at + out * t)
-                    .all(|(stroke, d)| stroke == a.stroke || stroke == b.stroke || d > stroke_width)
-            })
-    };
-    if !clear_ahead(a, ua) || !clear_ahead(b, ub) {
-        return None;
-    }
-    // The side that stops short turns on its own line, abreast of the other's end.
-    let (short, long, short_way) = if lead > 0.0 { (a, b, ua) } else { (b, a, ub) };
-    let corner = (lead.abs() > 0.5 * stroke_width)
-        .then(|| short.at + short_way * (long.at - short.at).dot(short_way).max(0.0));
-    let length = match corner {
-        Some(corner) => a.at.distance(corner) + corner.distance(b.at),
-        None => a.at.distance(b.at),
-    };
-    Some(Candidate {
-        cost: FLAT_END_COST_OFFSET + length,
-        least_cost: FLAT_END_COST_OFFSET + length,
-        length,
-        alongside: 0.0,
-        a: a.vertex,
-        b: b.vertex,
-        corner,
-        tip_corner: false,
-        flat_end: true,
-        between_free_ends: false,
-        through: None,
-    })
-}
-
 /// DECISION: a cusp bridge costs this plus its length: more than any other bridge, so that it
 /// is only taken by ends that no continuation took (the sides of a narrow neck with gaps across
 /// it go on across their gaps, and are not sealed).
@@ -4240,7 +4134,6 @@ mod tests {
             b,
             corner: None,
             tip_corner: false,
-            flat_end: false,
             between_free_ends: true,
             through: None,
         }
@@ -4258,7 +4151,6 @@ mod tests {
             b,
             corner: None,
             tip_corner: false,
-            flat_end: false,
             between_free_ends: true,
             through: None,
         }

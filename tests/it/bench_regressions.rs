@@ -318,12 +318,3 @@ fn a_corner_through_a_letters_tip_does_not_reach_across_to_the_next_letter() {
     assert_traces_exactly(11, "letters", "thick", 18);
     assert_traces_exactly(8, "letters", "thick", 1);
 }
-
-/// A blunt spike whose tip stroke fell in a pen lift: its two sides end side by side and were
-/// never bridged as lines side by side; they turn into each other across the flat end where that
-/// closes the outline and nothing lies ahead (`flat_end_candidate`, stop 63).
-#[test]
-fn the_two_sides_of_a_flat_end_lost_in_a_pen_lift_turn_into_each_other() {
-    assert_traces_exactly(11, "spikes", "clean", 0);
-    assert_traces_exactly(7, "spikes", "thin", 2);
-}
