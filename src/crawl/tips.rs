@@ -102,6 +102,20 @@ const MIN_ROUNDED_IN_PEN_WIDTHS: f64 = 1.0;
 // benchmark (exact of 432) with stop 57's dot bound: seed 6 +1 (a thick spike), nothing lost on
 // any split; seed 4 +1. 5 pen widths: +1 −1.
 const MAX_ROUNDED_IN_PEN_WIDTHS: f64 = 3.2;
+/// DECISION: (stop 63) at a vertex turning as much as a hairpin ([`MIN_HAIRPIN_TURN_DEGREES`]),
+/// arms' lines that meet more than this far (degrees) off the outward bisector, seen from the
+/// rounded vertex (farther to one side than ahead of it), mark a flat end, not a tip: a thinned
+/// acute tip is rounded symmetrically, its arms' lines meet ahead of the vertex on its
+/// bisector; a finger's or a leg's flat end (two corners near 90° a pen width or two apart)
+/// whose sides converge a little has its lines meet beside one corner, and the apex put there
+/// (and run on to the ink's edge that way) cut the other corner. Such an end is left to
+/// [`hairpin_end`], which puts both corners back. Measured on the benchmark (exact of 432 /
+/// 1728): seed 11 +2 (`spikes-thin-015`, a thin finger whose lines met 87° off the bisector;
+/// `spikes-scan-007`, 46°), seeds 1, 3, 5–8 unchanged, none lost; seed 12 +4, seed 2 −1, seed 4
+/// unchanged. 60°: seed 11 +1 (the finger), the rest the same; 30°: seed 8 −1 (a thick star's
+/// tip whose lines meet 43° off). The worst distance of development drawings exact either way
+/// grows on two (0.7 px at most) and shrinks on five.
+const MAX_TIP_MEET_OFF_AXIS_DEGREES: f64 = 45.0;
 /// The new edges must lie within this much (in pen widths) of ink all along: the ink's half
 /// width, so that they run inside the stroke the pen drew.
 const INK_REACH_IN_PEN_WIDTHS: f64 = 0.5;
@@ -487,7 +501,15 @@ fn recover_apex(
     // to decide, as at a hairpin ([`hairpin_end`]). Before, that null tip stood in the way and a
     // thick V stayed 4.5 px short of its apex. Measured on the benchmark: dev 384 → 385, the
     // other four splits the same, none lost.
+    // A hairpin's arms whose lines meet off to one side: a flat end, not a tip
+    // ([`MAX_TIP_MEET_OFF_AXIS_DEGREES`]).
+    let sideways = turn_degrees >= MIN_HAIRPIN_TURN_DEGREES
+        && (apex - here).dot(outward)
+            <= (apex - here).hypot()
+                * outward.hypot()
+                * MAX_TIP_MEET_OFF_AXIS_DEGREES.to_radians().cos();
     if (apex - here).dot(outward) <= 0.0
+        || sideways
         || shift < MIN_HAIRPIN_SHIFT_PX
         || !ahead(far_before, near_before)
         || !ahead(far_after, near_after)

@@ -318,3 +318,12 @@ fn a_corner_through_a_letters_tip_does_not_reach_across_to_the_next_letter() {
     assert_traces_exactly(11, "letters", "thick", 18);
     assert_traces_exactly(8, "letters", "thick", 1);
 }
+
+/// A thin spike drawing's finger whose flat end's sides converge a little: the two arms' lines
+/// met 87° off the end's bisector, beside one corner, and the apex put there cut the other
+/// corner by 4.6 px. Lines meeting more to one side than ahead mark a flat end, not a tip
+/// (`MAX_TIP_MEET_OFF_AXIS_DEGREES`, stop 63), and the hairpin's end puts both corners back.
+#[test]
+fn a_fingers_flat_end_whose_sides_converge_is_not_read_as_a_tip() {
+    assert_traces_exactly(11, "spikes", "thin", 15);
+}
