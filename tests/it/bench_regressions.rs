@@ -327,3 +327,12 @@ fn a_corner_through_a_letters_tip_does_not_reach_across_to_the_next_letter() {
 fn a_fingers_flat_end_whose_sides_converge_is_not_read_as_a_tip() {
     assert_traces_exactly(11, "spikes", "thin", 15);
 }
+
+/// Thin square waves whose pen lift fell at a corner: the corner bridge's path through the corner
+/// (8.8 px) overstated a lift of 5.3 px along the chord and broke the wave in two; a square
+/// corner's gap is the mean of its chord and its path (`Matching::corner_gap`, stop 63).
+#[test]
+fn a_square_waves_corner_in_a_pen_lift_is_bridged() {
+    assert_traces_exactly(11, "spirals-waves", "thin", 2);
+    assert_traces_exactly(11, "spirals-waves", "thin", 7);
+}
