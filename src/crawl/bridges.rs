@@ -277,8 +277,19 @@ pub(super) fn match_gap_bridges(
                 .dot_radius
                 .values()
                 .fold(0.0, |a: f64, &b| a.max(b));
-    let (candidates, on_gaps) = bridge_candidates(vertices, ends, reach, spacing, stroke_width);
-    let matching = Matching::new(vertices, ends, &candidates, &on_gaps, spacing, stroke_width);
+    // One index of the strokes' segments for the candidates and the matching both.
+    let segments = StrokeSegments::new(spacing, stroke_width);
+    let (candidates, on_gaps) =
+        bridge_candidates(vertices, ends, &segments, reach, spacing, stroke_width);
+    let matching = Matching::new(
+        vertices,
+        ends,
+        &candidates,
+        &on_gaps,
+        &segments,
+        spacing,
+        stroke_width,
+    );
     // First a rough typical gap from an unlimited matching, then the hand's typical gap from the
     // matching that rough limit settles (a greedy first matching can take a short diagonal
     // between two lines side by side, which the settled matching gives up), then the matching
@@ -540,7 +551,7 @@ struct Matching<'a> {
     /// The free ends by vertex, for [`Matching::corner_gap`].
     end_at: HashMap<u32, BridgeableEnd>,
     /// The strokes' segments, for [`Matching::runs_into_stroke`].
-    segments: StrokeSegments,
+    segments: &'a StrokeSegments,
     /// Whether a free end's line runs into another stroke ([`Matching::runs_into_stroke`]),
     /// by vertex, as asked.
     runs_into: std::cell::RefCell<HashMap<u32, bool>>,
@@ -553,6 +564,7 @@ impl<'a> Matching<'a> {
         ends: &[BridgeableEnd],
         candidates: &'a [Candidate],
         on_gaps: &'a [EndOnGap],
+        segments: &'a StrokeSegments,
         spacing: f64,
         stroke_width: f64,
     ) -> Self {
@@ -572,7 +584,7 @@ impl<'a> Matching<'a> {
                 .filter(|end| !end.attached && end.outward.is_some())
                 .map(|end| (end.vertex, *end))
                 .collect(),
-            segments: StrokeSegments::new(spacing, stroke_width),
+            segments,
             runs_into: std::cell::RefCell::new(HashMap::new()),
             spacing,
         }
@@ -1709,6 +1721,7 @@ impl OpenedCorners {
 fn bridge_candidates(
     vertices: &StrokeVertices,
     ends: &[BridgeableEnd],
+    segments: &StrokeSegments,
     reach: f64,
     spacing: f64,
     stroke_width: f64,
@@ -1722,7 +1735,6 @@ fn bridge_candidates(
     for &(end, stroke) in &ran_into {
         junction_strokes.entry(end).or_default().push(stroke);
     }
-    let segments = StrokeSegments::new(spacing, stroke_width);
     // Each end's band partner ([`StrokeSegments::band_partner`]), found once.
     let mut band_partners: HashMap<u32, Option<usize>> = HashMap::new();
     let mut band_partner_of = |end: &BridgeableEnd| -> Option<usize> {
@@ -4308,7 +4320,14 @@ mod tests {
             ..free_end(0, Point::new(0.0, 9.0), -down, 0.0)
         };
         let ordinary = |ends: &[BridgeableEnd]| {
-            let (candidates, _) = bridge_candidates(&vertices, ends, 40.0, 3.0, 2.0);
+            let (candidates, _) = bridge_candidates(
+                &vertices,
+                ends,
+                &StrokeSegments::new(3.0, 2.0),
+                40.0,
+                3.0,
+                2.0,
+            );
             candidates
                 .iter()
                 .any(|c| [c.a.min(c.b), c.a.max(c.b)] == [5, 7] && c.cost < AUGMENT_MAX_COST)
@@ -4346,12 +4365,28 @@ mod tests {
         };
         let ends = [t_end, free];
         let stroke_width = 2.0;
-        let (candidates, _) = bridge_candidates(&vertices, &ends, 40.0, 3.0, stroke_width);
+        let (candidates, _) = bridge_candidates(
+            &vertices,
+            &ends,
+            &StrokeSegments::new(3.0, stroke_width),
+            40.0,
+            3.0,
+            stroke_width,
+        );
         let into_t = candidates
             .iter()
             .find(|c| c.corner.is_none() && [c.a.min(c.b), c.a.max(c.b)] == [4, 6])
             .expect("a straight bridge from the line into the T-end");
-        let matching = Matching::new(&vertices, &ends, &candidates, &[], 4.0, stroke_width);
+        let segments = StrokeSegments::new(4.0, stroke_width);
+        let matching = Matching::new(
+            &vertices,
+            &ends,
+            &candidates,
+            &[],
+            &segments,
+            4.0,
+            stroke_width,
+        );
         let to_arm = 9.0 / 2f64.sqrt();
         assert!((matching.ink_gap(into_t) - (to_arm - stroke_width)).abs() < 1e-9);
     }
@@ -4390,12 +4425,28 @@ mod tests {
             },
         ];
         let stroke_width = 2.0;
-        let (candidates, _) = bridge_candidates(&vertices, &ends, 40.0, 2.0, stroke_width);
+        let (candidates, _) = bridge_candidates(
+            &vertices,
+            &ends,
+            &StrokeSegments::new(2.0, stroke_width),
+            40.0,
+            2.0,
+            stroke_width,
+        );
         let straight = candidates
             .iter()
             .find(|c| c.corner.is_none() && [c.a.min(c.b), c.a.max(c.b)] == [side_end, on_end])
             .expect("a straight bridge along the band");
-        let matching = Matching::new(&vertices, &ends, &candidates, &[], 4.0, stroke_width);
+        let segments = StrokeSegments::new(4.0, stroke_width);
+        let matching = Matching::new(
+            &vertices,
+            &ends,
+            &candidates,
+            &[],
+            &segments,
+            4.0,
+            stroke_width,
+        );
         assert!(
             matching.ink_gap(straight) < 6.0,
             "gap {:.1} of a {:.1} px bridge",
@@ -4470,7 +4521,8 @@ mod tests {
             plain_bridge(&vertices, 0, 6, side_cost),
             plain_bridge(&vertices, 5, 9, side_cost),
         ];
-        let matching = Matching::new(&vertices, &ends, &candidates, &[], 4.0, 3.0);
+        let segments = StrokeSegments::new(4.0, 3.0);
+        let matching = Matching::new(&vertices, &ends, &candidates, &[], &segments, 4.0, 3.0);
         let rearrangeable = matching.rearrangeable(10.0);
         pairs(&matching.open_sealed_loops(vec![&candidates[0], &candidates[1]], &rearrangeable))
     }
@@ -4553,7 +4605,8 @@ mod tests {
             bridge(1, 2, 13.0, 10.0),
             bridge(5, 6, 12.0, 10.0),
         ];
-        let matching = Matching::new(&vertices, &ends, &candidates, &[], 4.0, 3.0);
+        let segments = StrokeSegments::new(4.0, 3.0);
+        let matching = Matching::new(&vertices, &ends, &candidates, &[], &segments, 4.0, 3.0);
         let rearrangeable = matching.rearrangeable(10.0);
         let uncrossed =
             matching.uncross(vec![&candidates[0], &candidates[1]], &rearrangeable, 60.0);
@@ -4565,7 +4618,8 @@ mod tests {
             bridge(1, 2, 13.0, 13.0),
             bridge(5, 6, 12.0, 12.0),
         ];
-        let matching = Matching::new(&vertices, &ends, &dearer, &[], 4.0, 3.0);
+        let segments = StrokeSegments::new(4.0, 3.0);
+        let matching = Matching::new(&vertices, &ends, &dearer, &[], &segments, 4.0, 3.0);
         let rearrangeable = matching.rearrangeable(10.0);
         let kept = matching.uncross(vec![&dearer[0], &dearer[1]], &rearrangeable, 60.0);
         assert_eq!(pairs(&kept), [(1, 6), (2, 5)]);
@@ -4614,12 +4668,14 @@ mod tests {
             b: 4,
             at: Point::new(10.0, 0.0),
         }];
-        let matching = Matching::new(&vertices, &ends, &candidates, &on_gaps, 4.0, 3.0);
+        let segments = StrokeSegments::new(4.0, 3.0);
+        let matching = Matching::new(&vertices, &ends, &candidates, &on_gaps, &segments, 4.0, 3.0);
         let rearrangeable = matching.rearrangeable(20.0);
         let kept = matching.augment(vec![&candidates[0]], &rearrangeable);
         assert_eq!(pairs(&kept), [(1, 4)]);
         // Were the foot no end on the gap, the two corners would join more ends.
-        let matching = Matching::new(&vertices, &ends, &candidates, &[], 4.0, 3.0);
+        let segments = StrokeSegments::new(4.0, 3.0);
+        let matching = Matching::new(&vertices, &ends, &candidates, &[], &segments, 4.0, 3.0);
         let augmented = matching.augment(vec![&candidates[0]], &rearrangeable);
         assert_eq!(pairs(&augmented), [(1, 8), (4, 5)]);
     }
@@ -4659,7 +4715,8 @@ mod tests {
             plain_bridge(&vertices, 1, 4, 12.0),
             plain_bridge(&vertices, 3, 7, 20.0),
         ];
-        let matching = Matching::new(&vertices, &ends, &candidates, &[], 4.0, 3.0);
+        let segments = StrokeSegments::new(4.0, 3.0);
+        let matching = Matching::new(&vertices, &ends, &candidates, &[], &segments, 4.0, 3.0);
         let rearrangeable = matching.rearrangeable(10.0);
         let repaired =
             matching.repair_pairings(vec![&candidates[0], &candidates[1]], &rearrangeable);
@@ -4671,7 +4728,8 @@ mod tests {
             plain_bridge(&vertices, 1, 4, 12.0),
             plain_bridge(&vertices, 3, 7, 20.0),
         ];
-        let matching = Matching::new(&vertices, &ends, &dearer, &[], 4.0, 3.0);
+        let segments = StrokeSegments::new(4.0, 3.0);
+        let matching = Matching::new(&vertices, &ends, &dearer, &[], &segments, 4.0, 3.0);
         let rearrangeable = matching.rearrangeable(10.0);
         let kept = matching.repair_pairings(vec![&dearer[0], &dearer[1]], &rearrangeable);
         assert_eq!(pairs(&kept), [(1, 3), (4, 7)]);
