@@ -93,7 +93,10 @@ def main():
         output = traced.read_text()
     tolerance = args.tolerance
     if tolerance is None:
-        pen = float(re.search(r'data-pen="([\d.]+)"', truth).group(1))
+        # Benchmark truths carry data-pen; the samples' truths give the pen as the stroke width.
+        pen_match = (re.search(r'data-pen="([\d.]+)"', truth)
+                     or re.search(r'stroke-width="([\d.]+)"', truth))
+        pen = float(pen_match.group(1))
         jitter = float((re.search(r'data-jitter="([\d.]+)"', truth) or [0, 0])[1])
         tolerance = pen / 2 + jitter + 2
     image = Image.open(args.drawing).convert("L")
