@@ -22,11 +22,6 @@ const KNOWN_FAILURES: &[(&str, &str)] = &[
         "spiral-waves-thin.png",
         "a wave's peak strays 3.2 px from the truth with a 1.9 px pen; the tolerance is 2.9 px",
     ),
-    (
-        "star-circle-thin.png",
-        "the star closes, but one 36° tip whose apex fell in a pen lift is cut 3.3 px short \
-         with a 1.75 px pen; the tolerance is 2.9 px",
-    ),
 ];
 
 fn traced_svg(image: &Path) -> String {
