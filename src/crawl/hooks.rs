@@ -95,27 +95,33 @@ pub fn trim_hooked_ends(curves: &mut [Polyline], stroke_width: f64) {
         }
     }
     for (i, from_last, keep_from, meet) in trims {
-        let curve = &mut curves[i];
-        if curve.points.len() < 2 {
-            continue;
-        }
-        let mut points = curve.points.clone();
-        if from_last {
-            points.reverse();
-        }
-        if keep_from >= points.len() {
-            continue;
-        }
-        let mut trimmed = vec![meet];
-        trimmed.extend_from_slice(&points[keep_from..]);
-        if trimmed.len() < 2 {
-            continue;
-        }
-        if from_last {
-            trimmed.reverse();
-        }
-        curve.points = trimmed;
+        cut_end_back(&mut curves[i], from_last, keep_from, meet);
     }
+}
+
+/// Cuts the end of `curve` (its last point's end where `from_last`) back to `new_end`: the points
+/// before `keep_from`, counted from that end, are dropped and `new_end` put in their place.
+fn cut_end_back(curve: &mut Polyline, from_last: bool, keep_from: usize, new_end: Point) {
+    if curve.points.len() < 2 {
+        return;
+    }
+    let mut points = curve.points.clone();
+    if from_last {
+        points.reverse();
+    }
+    if keep_from >= points.len() {
+        return;
+    }
+    let mut trimmed = vec![new_end];
+    trimmed.extend_from_slice(&points[keep_from..]);
+    trimmed.dedup();
+    if trimmed.len() < 2 {
+        return;
+    }
+    if from_last {
+        trimmed.reverse();
+    }
+    curve.points = trimmed;
 }
 
 /// The other curve whose line passes within `reach` of `point`, nearest first.
@@ -286,24 +292,7 @@ pub fn unhook_ends_beside_lines(curves: &mut [Polyline], stroke_width: f64) {
         }
     }
     for (i, from_last, keep_from, end) in trims {
-        let curve = &mut curves[i];
-        let mut points = curve.points.clone();
-        if from_last {
-            points.reverse();
-        }
-        if keep_from >= points.len() {
-            continue;
-        }
-        let mut trimmed = vec![end];
-        trimmed.extend_from_slice(&points[keep_from..]);
-        trimmed.dedup();
-        if trimmed.len() < 2 {
-            continue;
-        }
-        if from_last {
-            trimmed.reverse();
-        }
-        curve.points = trimmed;
+        cut_end_back(&mut curves[i], from_last, keep_from, end);
     }
 }
 
