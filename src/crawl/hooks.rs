@@ -65,6 +65,20 @@ const WALK_STEP_PX: f64 = 0.5;
 /// but lost a thin dumbbell's neck and a meander's parting legs, whose hairpins look the same
 /// there and are joined by later stages.
 pub fn trim_hooked_ends(curves: &mut [Polyline], stroke_width: f64) {
+    cut_back_hooked_ends(curves, stroke_width, |points, curves, _own, other, grid| {
+        hook(points, curves, other, grid, stroke_width)
+    });
+}
+
+/// The driver both hook stages share: every end of an open curve that lies on another curve's
+/// line ([`END_ON_LINE_IN_PEN_WIDTHS`]) is read by `find` from a copy of its curve starting at
+/// that end (with the curve's index and the nearest other curve's), and the ends it finds
+/// hooked are cut back only after all were read, so that no cut changes what another end reads.
+fn cut_back_hooked_ends(
+    curves: &mut [Polyline],
+    stroke_width: f64,
+    find: impl Fn(&[Point], &[Polyline], usize, usize, &SegmentGrid) -> Option<(usize, Point)>,
+) {
     if stroke_width <= 0.0 || curves.len() < 2 {
         return;
     }
@@ -81,7 +95,6 @@ pub fn trim_hooked_ends(curves: &mut [Polyline], stroke_width: f64) {
             } else {
                 curve.points[0]
             };
-            // Only an end on another curve's line is read on, from a copy starting there.
             let Some(other) = other_curve_under(&grid, curves, end, i, on) else {
                 continue;
             };
@@ -89,13 +102,13 @@ pub fn trim_hooked_ends(curves: &mut [Polyline], stroke_width: f64) {
             if from_last {
                 points.reverse();
             }
-            if let Some((keep_from, meet)) = hook(&points, curves, other, &grid, stroke_width) {
-                trims.push((i, from_last, keep_from, meet));
+            if let Some((keep_from, new_end)) = find(&points, curves, i, other, &grid) {
+                trims.push((i, from_last, keep_from, new_end));
             }
         }
     }
-    for (i, from_last, keep_from, meet) in trims {
-        cut_end_back(&mut curves[i], from_last, keep_from, meet);
+    for (i, from_last, keep_from, new_end) in trims {
+        cut_end_back(&mut curves[i], from_last, keep_from, new_end);
     }
 }
 
@@ -270,30 +283,10 @@ const BESIDE_MAX_DEGREES: f64 = 25.0;
 /// validation seed 2 +1, seed 12 +4; held-out seed 4 −1 (not looked at). At 0.5 pen widths off:
 /// development +3 (not `-022`), validation +1 and +3, seed 4 unchanged.
 pub fn unhook_ends_beside_lines(curves: &mut [Polyline], stroke_width: f64) {
-    if stroke_width <= 0.0 || curves.len() < 2 {
-        return;
-    }
     let on = END_ON_LINE_IN_PEN_WIDTHS * stroke_width;
-    let grid = SegmentGrid::new(curves, on);
-    let mut trims: Vec<(usize, bool, usize, Point)> = Vec::new();
-    for (i, curve) in curves.iter().enumerate() {
-        if curve.closed || curve.points.len() < 2 {
-            continue;
-        }
-        for from_last in [false, true] {
-            let mut points = curve.points.clone();
-            if from_last {
-                points.reverse();
-            }
-            if let Some((keep_from, end)) = hook_across(&points, curves, i, &grid, on, stroke_width)
-            {
-                trims.push((i, from_last, keep_from, end));
-            }
-        }
-    }
-    for (i, from_last, keep_from, end) in trims {
-        cut_end_back(&mut curves[i], from_last, keep_from, end);
-    }
+    cut_back_hooked_ends(curves, stroke_width, |points, curves, own, _other, grid| {
+        hook_across(points, curves, own, grid, on, stroke_width)
+    });
 }
 
 /// For the curve `points` from one end: the index from which its points are kept and its new
