@@ -196,7 +196,7 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
         cut_back_retraced_sides(&mut curves, stroke_width);
         fold_collapsed_necks(&mut curves, &raster.mask, stroke_width);
         fold_collapsed_spikes(&mut curves, &raster.mask, stroke_width);
-        join_free_ends_to_spike_tips(&mut curves, &raster.mask, stroke_width);
+        join_free_ends_to_spike_tips(&mut curves, &raster.mask, stroke_width, typical_gap);
         join_touching_loops(&mut curves, &raster.mask, stroke_width);
         join_band_tips_across_gaps(&mut curves, stroke_width);
         drop_redundant_arcs(&mut curves, stroke_width);
