@@ -655,8 +655,16 @@ impl SegmentGrid {
             for s in 0..count {
                 let (a, b) = (curve.points[s], curve.points[(s + 1) % n]);
                 let pieces = (a.distance(b) / step).ceil().max(1.0) as usize;
+                // A segment is put once in each cell it passes through: consecutive points along
+                // it often fall in one cell, and the copies only cost the queries time.
+                let mut last_cell = None;
                 for k in 0..=pieces {
-                    grid.insert(a.lerp(b, k as f64 / pieces as f64), (i, s));
+                    let p = a.lerp(b, k as f64 / pieces as f64);
+                    let cell = grid.cell_of(p);
+                    if last_cell != Some(cell) {
+                        grid.insert(p, (i, s));
+                        last_cell = Some(cell);
+                    }
                 }
             }
         }
