@@ -390,8 +390,9 @@ const MAX_SPIKE_END_IN_PEN_WIDTHS: f64 = 8.0;
 /// Measured on the benchmark (exact): seed 11 +2 (`letters-clean-008`, `letters-scan-021`),
 /// every other split unchanged, nothing lost; validation seeds 2 and 12 and held-out seed 4
 /// unchanged; the same at 1.25. The T-ends seen lay 1.7 and 1.9 typical gaps from the root,
-/// the true sides on the spike's line 0.4 and 1.2. Without the exceptions (any free end, or also the curve's own end,
-/// held to 1.5 typical gaps): seed 11 +3, seed 8 −1 (a thick star's spike), seed 12 −2.
+/// the true sides on the spike's line 0.4 and 1.2. Without the exceptions (any free end, or
+/// also the curve's own end, held to 1.5 typical gaps): seed 11 +3, seed 8 −1 (a thick star's
+/// spike), seed 12 −2.
 /// Holding any free end to 4 pen widths or requiring two wide samples (not one) instead:
 /// seed 11 +2 −3 and +4 −6, development −2 and −3.
 const T_END_MAX_LIFT_IN_TYPICAL_GAPS: f64 = 1.5;
@@ -415,6 +416,8 @@ pub fn join_free_ends_to_spike_tips(
     typical_gap: f64,
 ) {
     let reach = ROOT_REACH_IN_PEN_WIDTHS * stroke_width;
+    let on_tip_line = ON_TIP_LINE_IN_PEN_WIDTHS * stroke_width;
+    let lift_reach = T_END_MAX_LIFT_IN_TYPICAL_GAPS * typical_gap;
     if stroke_width <= 0.0 || !curves.iter().any(|c| !c.closed) {
         return;
     }
@@ -444,8 +447,6 @@ pub fn join_free_ends_to_spike_tips(
                 continue;
             };
             let at = points[root];
-            let on_tip_line = ON_TIP_LINE_IN_PEN_WIDTHS * stroke_width;
-            let lift_reach = T_END_MAX_LIFT_IN_TYPICAL_GAPS * typical_gap;
             let nearest = ends
                 .around(at)
                 .filter(|&&end| end != tip)

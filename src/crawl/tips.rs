@@ -317,6 +317,12 @@ fn find_tips(
         .filter(|&i| turns[i] >= MIN_TIP_TURN_DEGREES)
         .collect();
     order.sort_by(|&a, &b| turns[b].total_cmp(&turns[a]).then(a.cmp(&b)));
+    // A nub at vertex `i` whose ink runs on at least `min_beyond` pen widths past the pen's half
+    // width ([`nub_end`]), unless another curve runs through that ink.
+    let untraced_nub = |i: usize, min_beyond: f64| {
+        nub_end(&walk, i, arm, mask, stroke_width, min_beyond)
+            .filter(|tip| !nub_traced(&walk, i, index, tip.apex, traced, arm))
+    };
     let mut taken: Vec<(f64, f64)> = Vec::new();
     for i in order {
         let s = walk.cumulative[i];
@@ -326,26 +332,18 @@ fn find_tips(
         }
         taken.push((s - arm, s + arm));
         let hairpin = turns[i] >= MIN_HAIRPIN_TURN_DEGREES;
-        // A hairpin's end is read from the ink by [`hairpin_end`] alone.
-        let nub = || {
-            (!hairpin).then_some(())?;
-            nub_end(
-                &walk,
-                i,
-                arm,
-                mask,
-                stroke_width,
-                MIN_TIP_NUB_BEYOND_IN_PEN_WIDTHS,
-            )
-            .filter(|tip| !nub_traced(&walk, i, index, tip.apex, traced, arm))
-        };
+        // A hairpin's end is read from the ink by [`hairpin_end`] alone, never as a nub.
         if let Some(tip) = recover_apex(&walk, i, turns[i], mask, stroke_width)
             .or_else(|| {
                 hairpin
                     .then(|| hairpin_end(&walk, i, mask, stroke_width))
                     .flatten()
             })
-            .or_else(nub)
+            .or_else(|| {
+                (!hairpin)
+                    .then(|| untraced_nub(i, MIN_TIP_NUB_BEYOND_IN_PEN_WIDTHS))
+                    .flatten()
+            })
         {
             tips.push(tip);
         }
@@ -360,16 +358,7 @@ fn find_tips(
         if taken.iter().any(|&(lo, hi)| arc_within(&walk, s, lo, hi)) {
             continue;
         }
-        if let Some(tip) = nub_end(
-            &walk,
-            i,
-            arm,
-            mask,
-            stroke_width,
-            MIN_NUB_BEYOND_IN_PEN_WIDTHS,
-        )
-        .filter(|tip| !nub_traced(&walk, i, index, tip.apex, traced, arm))
-        {
+        if let Some(tip) = untraced_nub(i, MIN_NUB_BEYOND_IN_PEN_WIDTHS) {
             taken.push((s - arm, s + arm));
             tips.push(tip);
         }
