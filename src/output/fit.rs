@@ -15,6 +15,8 @@ use kurbo::{
     BezPath, CubicBez, Line, ParamCurve, ParamCurveDeriv, ParamCurveNearest, PathSeg, Point, Vec2,
 };
 
+use rayon::prelude::*;
+
 use crate::geometry::polyline::simplification_mask;
 use crate::geometry::Polyline;
 use corners::find_corners;
@@ -103,8 +105,9 @@ impl FittedSegment {
 /// Fits every curve into a path and puts the paths in the SVG's stable order (the pipeline's
 /// "fit" stage).
 pub fn fit_paths(curves: &[Polyline], options: &FitOptions) -> Vec<CurvePath> {
+    // Each curve is fitted on its own, on whichever thread is free; `collect` keeps their order.
     let mut paths: Vec<CurvePath> = curves
-        .iter()
+        .par_iter()
         .map(|curve| CurvePath {
             path: fit_curve(curve, options),
             closed: curve.closed,
