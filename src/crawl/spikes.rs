@@ -19,7 +19,7 @@ use super::remove_marked;
 use crate::geometry::grid::PointGrid;
 use crate::geometry::polyline::{
     bounding_box, distance_to_segment, distances_along, nearest_point_index, polyline_length,
-    Polyline,
+    within_of_chain, Polyline,
 };
 use crate::raster::bitmap::Bitmap;
 use crate::strokes::ink_width_across;
@@ -453,13 +453,16 @@ pub fn join_free_ends_to_spike_tips(
                 .filter(|end| {
                     let (point, next) = end.point_and_next(curves);
                     // A line ending on the spike's own curve is a side only a pen lift from
-                    // the root ([`T_END_MAX_LIFT_IN_TYPICAL_GAPS`]).
-                    let t_end_too_far = end.curve != tip.curve
-                        && point.distance(at) > lift_reach
-                        && distance_to_line(point, &curves[tip.curve].points) <= on_tip_line;
+                    // the root ([`T_END_MAX_LIFT_IN_TYPICAL_GAPS`]); the walk along that curve
+                    // is left for the ends that pass the cheap tests.
+                    let t_end_too_far = || {
+                        end.curve != tip.curve
+                            && point.distance(at) > lift_reach
+                            && within_of_chain(point, &curves[tip.curve].points, on_tip_line)
+                    };
                     point.distance(at) <= reach
-                        && !t_end_too_far
                         && (at - point).dot(point - next) > 0.0
+                        && !t_end_too_far()
                 })
                 .min_by(|a, b| {
                     let d = |e: &CurveEnd| e.point(curves).distance(at);
@@ -495,14 +498,6 @@ pub fn join_free_ends_to_spike_tips(
         }
     }
     *curves = stitched(curves, &joined);
-}
-
-/// The least distance from `point` to the polyline through `points`.
-fn distance_to_line(point: Point, points: &[Point]) -> f64 {
-    points
-        .windows(2)
-        .map(|pair| distance_to_segment(point, Line::new(pair[0], pair[1])))
-        .fold(f64::INFINITY, f64::min)
 }
 
 /// One end of an open curve: its first point when `start`, else its last.
