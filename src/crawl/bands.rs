@@ -3,11 +3,12 @@
 //! a dash of its own. It is spliced back into the outline it stands on, out along its middle and
 //! back. Ours (issue 9, "outlines whose parts touch"); the paper has no notion of ink width.
 
-use std::collections::{HashMap, HashSet};
+use std::collections::HashSet;
 
 use kurbo::{Line, ParamCurve, ParamCurveNearest, Point, Vec2};
 
 use super::strokes::point_at_length;
+use crate::geometry::grid::PointGrid;
 use crate::geometry::Polyline;
 
 /// DECISION: a lone band is spliced into a closed outline whose line passes within this many pen
@@ -157,16 +158,12 @@ pub(super) fn point_back_from(points: &[Point], from_last: bool, distance: f64) 
 
 /// The segments of the closed curves in square cells, for the nearest one to a point.
 pub(super) struct SegmentGrid {
-    cell: f64,
-    cells: HashMap<(i64, i64), Vec<(usize, usize)>>,
+    grid: PointGrid<(usize, usize)>,
 }
 
 impl SegmentGrid {
     pub(super) fn new(curves: &[Polyline], cell: f64) -> Self {
-        let mut grid = Self {
-            cell,
-            cells: HashMap::new(),
-        };
+        let mut grid = PointGrid::new(cell);
         for (c, curve) in curves.iter().enumerate() {
             if !curve.closed {
                 continue;
@@ -177,20 +174,12 @@ impl SegmentGrid {
                 let (ka, kb) = (grid.cell_of(a), grid.cell_of(b));
                 for x in ka.0.min(kb.0)..=ka.0.max(kb.0) {
                     for y in ka.1.min(kb.1)..=ka.1.max(kb.1) {
-                        grid.cells.entry((x, y)).or_default().push((c, s));
+                        grid.insert_in_cell((x, y), (c, s));
                     }
                 }
             }
         }
-        grid
-    }
-
-    /// The cell `p` lies in.
-    fn cell_of(&self, p: Point) -> (i64, i64) {
-        (
-            (p.x / self.cell).floor() as i64,
-            (p.y / self.cell).floor() as i64,
-        )
+        Self { grid }
     }
 
     /// The nearest point of a closed curve's segment to `p` within `reach`.
@@ -206,12 +195,12 @@ impl SegmentGrid {
         reach: f64,
         except: usize,
     ) -> Option<Foot> {
-        let key = self.cell_of(p);
-        let span = (reach / self.cell).ceil() as i64;
+        let key = self.grid.cell_of(p);
+        let span = (reach / self.grid.cell()).ceil() as i64;
         let mut best: Option<Foot> = None;
         for x in key.0 - span..=key.0 + span {
             for y in key.1 - span..=key.1 + span {
-                for &(c, s) in self.cells.get(&(x, y)).into_iter().flatten() {
+                for &(c, s) in self.grid.in_cell((x, y)) {
                     if c == except {
                         continue;
                     }

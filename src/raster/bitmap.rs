@@ -1,6 +1,8 @@
 //! A packed-free binary image (one byte a pixel, 1 = ink) shared by the raster stages, with the
 //! `#`/`.` grid literals the unit tests are written in (the imageproc style).
 
+use crate::geometry::floor_to_i64;
+
 /// A binary image: `true` pixels are ink (or skeleton).
 #[derive(Clone, PartialEq, Eq)]
 pub struct Bitmap {
@@ -101,7 +103,9 @@ impl Bitmap {
         step: f64,
         reach: f64,
     ) -> f64 {
-        let ink = |q: kurbo::Point| self.get_signed(q.x.floor() as isize, q.y.floor() as isize);
+        let ink = |q: kurbo::Point| {
+            self.get_signed(floor_to_i64(q.x) as isize, floor_to_i64(q.y) as isize)
+        };
         if !ink(point) {
             return 0.0;
         }
