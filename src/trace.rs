@@ -11,8 +11,8 @@ use image::{DynamicImage, GrayImage};
 use crate::crawl::band_gaps::join_band_tips_across_gaps;
 use crate::crawl::bases::splice_protrusions_at_their_base;
 use crate::crawl::contacts::{
-    drop_covered_open_curves, drop_redundant_arcs, join_lassos, join_loops_to_open_curves,
-    join_touching_loops, splice_loops_into_bridges,
+    drop_covered_open_curves, drop_redundant_arcs, join_coils_through_loops, join_lassos,
+    join_loops_to_open_curves, join_touching_loops, splice_loops_into_bridges,
 };
 use crate::crawl::crossings::{go_on_through_corners, pair_arms_straightest_first};
 use crate::crawl::hooks::{trim_hooked_ends, unhook_ends_beside_lines};
@@ -203,6 +203,7 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
         drop_covered_open_curves(&mut curves, stroke_width);
         join_loops_to_open_curves(&mut curves, &raster.mask, stroke_width);
         join_lassos(&mut curves, stroke_width);
+        join_coils_through_loops(&mut curves, stroke_width);
         splice_loops_into_bridges(&mut curves, &raster.mask, stroke_width, typical_gap);
         close_outline_gaps(&mut curves, stroke_width, typical_gap);
         // DECISION: (stop 56) loops that touch are joined again after each stage that closes
