@@ -5,8 +5,8 @@
 //! through a corner of another stroke where a line was broken at a crossing
 //! ([`super::through`]).
 
+use crate::geometry::{FastHashMap, FastHashSet};
 use std::collections::hash_map::Entry;
-use std::collections::{HashMap, HashSet};
 
 use kurbo::{Line, Point, Vec2};
 
@@ -344,13 +344,13 @@ pub(super) fn match_gap_bridges(
     let matched = matching.join_dangling_arms(matched, ends, typical_gap);
     let matched = matching.open_sealed_loops(matched, &matching.rearrangeable(typical_gap));
     // The free ends by vertex, for drawing their bridges.
-    let free_end_at: HashMap<u32, &BridgeableEnd> = ends
+    let free_end_at: FastHashMap<u32, &BridgeableEnd> = ends
         .iter()
         .rev()
         .filter(|end| !end.attached)
         .map(|end| (end.vertex, end))
         .collect();
-    let junction_of: HashMap<u32, Point> = ends
+    let junction_of: FastHashMap<u32, Point> = ends
         .iter()
         .filter(|end| end.attached)
         .map(|end| (end.vertex, end.at))
@@ -362,7 +362,7 @@ pub(super) fn match_gap_bridges(
     // A second line through an opened corner (the other stroke of an "X" broken at its
     // crossing) goes on into the arm the first one cut: from the end to that arm's vertex,
     // through the corner.
-    let mut opened: HashSet<u32> = HashSet::new();
+    let mut opened: FastHashSet<u32> = FastHashSet::default();
     for m in matched {
         if let Some(through) = m.through {
             // At a hairpin the lines go on into their arms past the corner point, which lies
@@ -436,14 +436,14 @@ pub(super) fn match_gap_bridges(
             via,
         });
     }
-    let bridged: HashSet<u32> = result.bridges.iter().flat_map(|b| [b.a, b.b]).collect();
-    let straight: HashSet<(u32, u32)> = result
+    let bridged: FastHashSet<u32> = result.bridges.iter().flat_map(|b| [b.a, b.b]).collect();
+    let straight: FastHashSet<(u32, u32)> = result
         .bridges
         .iter()
         .filter(|b| b.via.is_empty())
         .map(|b| (b.a, b.b))
         .collect();
-    let mut attached: HashSet<u32> = HashSet::new();
+    let mut attached: FastHashSet<u32> = FastHashSet::default();
     for on_gap in on_gaps {
         if !bridged.contains(&on_gap.end)
             && straight.contains(&(on_gap.a, on_gap.b))
@@ -525,7 +525,7 @@ fn same_way_corner_within_lead(
 fn bridge_cut_arms(
     ends: &[BridgeableEnd],
     result: &mut GapBridges,
-    mut used: HashSet<u32>,
+    mut used: FastHashSet<u32>,
     typical_gap: f64,
     stroke_width: f64,
     spacing: f64,
@@ -599,18 +599,18 @@ struct Matching<'a> {
     vertices: &'a StrokeVertices,
     candidates: &'a [Candidate],
     /// How many bridges each vertex may take: one per free end it is (two for a one-sample dot).
-    slots: HashMap<u32, u8>,
-    stroke_of: HashMap<u32, usize>,
+    slots: FastHashMap<u32, u8>,
+    stroke_of: FastHashMap<u32, usize>,
     stroke_width: f64,
     /// The ends that sit on the gap between two others ([`defer_ends_on_gaps`]).
     on_gaps: &'a [EndOnGap],
     /// The free ends by vertex, for [`Matching::corner_gap`].
-    end_at: HashMap<u32, BridgeableEnd>,
+    end_at: FastHashMap<u32, BridgeableEnd>,
     /// The strokes' segments, for [`Matching::runs_into_stroke`].
     segments: &'a StrokeSegments,
     /// Whether a free end's line runs into another stroke ([`Matching::runs_into_stroke`]),
     /// by vertex, as asked.
-    runs_into: std::cell::RefCell<HashMap<u32, bool>>,
+    runs_into: std::cell::RefCell<FastHashMap<u32, bool>>,
     spacing: f64,
 }
 
@@ -624,7 +624,7 @@ impl<'a> Matching<'a> {
         spacing: f64,
         stroke_width: f64,
     ) -> Self {
-        let mut slots: HashMap<u32, u8> = HashMap::new();
+        let mut slots: FastHashMap<u32, u8> = FastHashMap::default();
         for end in ends {
             *slots.entry(end.vertex).or_default() += 1;
         }
@@ -641,7 +641,7 @@ impl<'a> Matching<'a> {
                 .map(|end| (end.vertex, *end))
                 .collect(),
             segments,
-            runs_into: std::cell::RefCell::new(HashMap::new()),
+            runs_into: std::cell::RefCell::new(FastHashMap::default()),
             spacing,
         }
     }
@@ -825,7 +825,7 @@ impl<'a> Matching<'a> {
         &self,
         typical_gap: Option<f64>,
         groups: &mut StrokeGroups,
-        remaining: &mut HashMap<u32, u8>,
+        remaining: &mut FastHashMap<u32, u8>,
         pending: &mut Vec<usize>,
         corners: &mut OpenedCorners,
         matched: &mut Vec<&'a Candidate>,
@@ -885,7 +885,7 @@ impl<'a> Matching<'a> {
     /// ([`Matching::augment`], [`Matching::uncross`]): plain bridges between two ends (no
     /// through-corner bridge, no last resort) within the ordinary gap limit.
     fn rearrangeable(&self, typical_gap: f64) -> Rearrangeable<'a> {
-        let mut of_end: HashMap<u32, Vec<&'a Candidate>> = HashMap::new();
+        let mut of_end: FastHashMap<u32, Vec<&'a Candidate>> = FastHashMap::default();
         for c in self.candidates.iter().filter(|c| {
             c.through.is_none()
                 && c.cost < AUGMENT_MAX_COST
@@ -910,7 +910,7 @@ impl<'a> Matching<'a> {
     ) -> Vec<&'a Candidate> {
         let of_end = &rearrangeable.of_end;
         let mut remaining = self.slots.clone();
-        let mut partner: HashMap<u32, usize> = HashMap::new();
+        let mut partner: FastHashMap<u32, usize> = FastHashMap::default();
         let mut result: Vec<Option<&'a Candidate>> = Vec::new();
         for (k, m) in matched.iter().enumerate() {
             *remaining.get_mut(&m.a).expect("end") -= 1;
@@ -929,7 +929,7 @@ impl<'a> Matching<'a> {
         // straight bridge under the foot was given up for two corners, into the door's foot and
         // from the door's other foot, and the door went into the outline.
         if !self.on_gaps.is_empty() {
-            let straight_taken: HashSet<(u32, u32)> = matched
+            let straight_taken: FastHashSet<(u32, u32)> = matched
                 .iter()
                 .filter(|m| m.corner.is_none() && m.through.is_none())
                 .map(|m| (m.a, m.b))
@@ -1027,7 +1027,7 @@ impl<'a> Matching<'a> {
         rearrangeable: &Rearrangeable<'a>,
     ) -> Vec<&'a Candidate> {
         let mut result: Vec<Option<&'a Candidate>> = matched.into_iter().map(Some).collect();
-        let mut bridge_of: HashMap<u32, usize> = HashMap::new();
+        let mut bridge_of: FastHashMap<u32, usize> = FastHashMap::default();
         for (k, m) in result.iter().flatten().enumerate() {
             if m.through.is_none() && rearrangeable.contains(m) {
                 bridge_of.insert(m.a, k);
@@ -1104,8 +1104,8 @@ impl<'a> Matching<'a> {
         ends: &[BridgeableEnd],
         typical_gap: f64,
     ) -> Vec<&'a Candidate> {
-        let bridged: HashSet<u32> = matched.iter().flat_map(|m| [m.a, m.b]).collect();
-        let free: HashSet<u32> = ends
+        let bridged: FastHashSet<u32> = matched.iter().flat_map(|m| [m.a, m.b]).collect();
+        let free: FastHashSet<u32> = ends
             .iter()
             .filter(|end| !end.attached)
             .map(|end| end.vertex)
@@ -1120,7 +1120,7 @@ impl<'a> Matching<'a> {
             })
             .collect();
         let pair = |a: u32, b: u32| (a.min(b), a.max(b));
-        let mut cheapest: HashMap<(u32, u32), Option<&'a Candidate>> = matched
+        let mut cheapest: FastHashMap<(u32, u32), Option<&'a Candidate>> = matched
             .iter()
             .zip(&arm_ends)
             .filter_map(|(m, arm_end)| arm_end.map(|arm_end| (pair(m.a, arm_end), None)))
@@ -1135,7 +1135,7 @@ impl<'a> Matching<'a> {
                 }
             }
         }
-        let mut joined: HashSet<u32> = HashSet::new();
+        let mut joined: FastHashSet<u32> = FastHashSet::default();
         matched
             .into_iter()
             .zip(arm_ends)
@@ -1250,7 +1250,7 @@ impl<'a> Matching<'a> {
         let position = |v: u32| self.vertices.positions[v as usize];
         let middle = |c: &Candidate| position(c.a).midpoint(position(c.b));
         // Strokes that meet at a junction share its vertex.
-        let mut stroke_at: HashMap<u32, usize> = HashMap::new();
+        let mut stroke_at: FastHashMap<u32, usize> = FastHashMap::default();
         let mut meeting: Vec<(usize, usize)> = Vec::new();
         for (stroke, of_stroke) in self.vertices.of_stroke.iter().enumerate() {
             for &v in of_stroke {
@@ -1284,7 +1284,8 @@ impl<'a> Matching<'a> {
                 let (a, b) = self.strokes_joined(m);
                 join(&mut sets, a, b);
             }
-            let mut links: HashMap<u32, Vec<(usize, usize, Option<usize>)>> = HashMap::new();
+            let mut links: FastHashMap<u32, Vec<(usize, usize, Option<usize>)>> =
+                FastHashMap::default();
             for &(a, b) in &meeting {
                 links
                     .entry(sets.find(a as u32))
@@ -1339,8 +1340,8 @@ impl<'a> Matching<'a> {
                 let ((pa, pb), (qa, qb)) = (self.strokes_joined(p), self.strokes_joined(q));
                 let mut roots = vec![curves.find(pa as u32), curves.find(qa as u32)];
                 roots.dedup();
-                let mut parent: HashMap<usize, usize> = HashMap::new();
-                let find = |parent: &HashMap<usize, usize>, mut x: usize| {
+                let mut parent: FastHashMap<usize, usize> = FastHashMap::default();
+                let find = |parent: &FastHashMap<usize, usize>, mut x: usize| {
                     while let Some(&up) = parent.get(&x) {
                         x = up;
                     }
@@ -1373,7 +1374,10 @@ impl<'a> Matching<'a> {
     /// The strokes joined by the plain bridges of `matched` (free end to free end, straight or
     /// round), and the roots of the groups they close into loops: a plain bridge joins two
     /// strokes of one group already, and no other kind of bridge touches the group.
-    fn loops_of_plain_bridges(&self, matched: &[&'a Candidate]) -> (StrokeGroups, HashSet<usize>) {
+    fn loops_of_plain_bridges(
+        &self,
+        matched: &[&'a Candidate],
+    ) -> (StrokeGroups, FastHashSet<usize>) {
         let mut groups = StrokeGroups::new(self.vertices);
         let mut closing = Vec::new();
         for m in matched.iter().filter(|m| m.is_plain()) {
@@ -1383,7 +1387,7 @@ impl<'a> Matching<'a> {
             }
             groups.join(a, b, 0.0);
         }
-        let mut mixed = HashSet::new();
+        let mut mixed = FastHashSet::default();
         for m in matched.iter().filter(|m| !m.is_plain()) {
             let (a, b) = self.strokes_joined(m);
             mixed.insert(groups.root(a));
@@ -1409,7 +1413,7 @@ impl<'a> Matching<'a> {
         let is_opening = |m: &Candidate| {
             m.is_plain() && self.ink_gap(m) >= OPENING_MIN_IN_TYPICAL_GAPS * typical_gap
         };
-        let mut openings: HashMap<usize, usize> = HashMap::new();
+        let mut openings: FastHashMap<usize, usize> = FastHashMap::default();
         for m in matched.iter().filter(|m| is_opening(m)) {
             *openings
                 .entry(groups.root(self.strokes_joined(m).0))
@@ -1438,13 +1442,13 @@ impl<'a> Matching<'a> {
         typical_gap: f64,
     ) -> Vec<&'a Candidate> {
         let (mut groups, loops) = self.loops_of_plain_bridges(&matched);
-        let outward: HashMap<u32, Vec2> = ends
+        let outward: FastHashMap<u32, Vec2> = ends
             .iter()
             .filter(|end| !end.attached)
             .filter_map(|end| Some((end.vertex, end.outward?)))
             .collect();
         // Each loop's bridges, by index into `matched`, gathered in one pass.
-        let mut of_loop: HashMap<usize, Vec<usize>> = HashMap::new();
+        let mut of_loop: FastHashMap<usize, Vec<usize>> = FastHashMap::default();
         for (i, m) in matched.iter().enumerate() {
             let root = groups.root(self.strokes_joined(m).0);
             if loops.contains(&root) {
@@ -1487,7 +1491,7 @@ impl<'a> Matching<'a> {
         &self,
         matched: &[&'a Candidate],
         bridges: &[usize],
-        outward: &HashMap<u32, Vec2>,
+        outward: &FastHashMap<u32, Vec2>,
         typical_gap: f64,
     ) -> bool {
         let [first, second, rest @ ..] = bridges else {
@@ -1546,7 +1550,7 @@ impl<'a> Matching<'a> {
         candidate: &Candidate,
         loop_gap: f64,
         loop_length: f64,
-        remaining: &HashMap<u32, u8>,
+        remaining: &FastHashMap<u32, u8>,
     ) -> bool {
         // DECISION: (stop 25) the share is that of the ink gap (what the pen skipped, as the gap
         // limits measure it), not of the bridge between the skeleton's ends, which thinning
@@ -1708,7 +1712,7 @@ fn measured_typical_gap(sorted_gaps: &[f64], spacing: f64) -> f64 {
 
 /// The candidates a matching may be rearranged with, by end ([`Matching::rearrangeable`]).
 struct Rearrangeable<'a> {
-    of_end: HashMap<u32, Vec<&'a Candidate>>,
+    of_end: FastHashMap<u32, Vec<&'a Candidate>>,
 }
 
 impl<'a> Rearrangeable<'a> {
@@ -1744,9 +1748,9 @@ impl<'a> Rearrangeable<'a> {
 /// into.
 #[derive(Default)]
 struct OpenedCorners {
-    kept_arm: HashMap<u32, u32>,
+    kept_arm: FastHashMap<u32, u32>,
     /// Corners whose cut arm has been taken up by a second line too.
-    full: HashSet<u32>,
+    full: FastHashSet<u32>,
 }
 
 impl OpenedCorners {
@@ -1784,22 +1788,22 @@ fn bridge_candidates(
 ) -> (Vec<Candidate>, Vec<EndOnGap>) {
     let mut candidates: Vec<Candidate> = Vec::new();
     // The pairs of ends offered a cusp, both ways round.
-    let mut cusps: HashSet<(u32, u32)> = HashSet::new();
+    let mut cusps: FastHashSet<(u32, u32)> = FastHashSet::default();
     let ran_into = strokes_ran_into(vertices, ends);
     // The strokes each T-end's junction joins it to.
-    let mut junction_strokes: HashMap<u32, Vec<usize>> = HashMap::new();
+    let mut junction_strokes: FastHashMap<u32, Vec<usize>> = FastHashMap::default();
     for &(end, stroke) in &ran_into {
         junction_strokes.entry(end).or_default().push(stroke);
     }
     // Each end's band partner ([`StrokeSegments::band_partner`]), found once.
-    let mut band_partners: HashMap<u32, Option<usize>> = HashMap::new();
+    let mut band_partners: FastHashMap<u32, Option<usize>> = FastHashMap::default();
     let mut band_partner_of = |end: &BridgeableEnd| -> Option<usize> {
         *band_partners
             .entry(end.vertex)
             .or_insert_with(|| segments.band_partner(vertices, end, stroke_width))
     };
     // Each end's straight run ([`straight_run`]), found once.
-    let mut straight_runs: HashMap<u32, StraightRun> = HashMap::new();
+    let mut straight_runs: FastHashMap<u32, StraightRun> = FastHashMap::default();
     let mut straight_run_of = |end: &BridgeableEnd| -> StraightRun {
         *straight_runs
             .entry(end.vertex)
@@ -1983,7 +1987,8 @@ fn bridge_candidates(
         !end.is_some_and(|partner| cusps.contains(&(candidate.end, partner)))
     });
     drop_corners_back_over_a_through_arm(&mut candidates, &through, vertices, ends);
-    let end_at: HashMap<u32, &BridgeableEnd> = ends.iter().rev().map(|e| (e.vertex, e)).collect();
+    let end_at: FastHashMap<u32, &BridgeableEnd> =
+        ends.iter().rev().map(|e| (e.vertex, e)).collect();
     drop_t_ends_across_through_corners(
         &mut candidates,
         &through,
@@ -2038,7 +2043,7 @@ fn drop_corners_back_over_a_through_arm(
     vertices: &StrokeVertices,
     ends: &[BridgeableEnd],
 ) {
-    let mut folded: HashSet<(u32, u32)> = HashSet::new();
+    let mut folded: FastHashSet<(u32, u32)> = FastHashSet::default();
     for candidate in through {
         let corner = &candidate.through;
         if corner.hairpin || vertices.closed[corner.stroke] {
@@ -2061,7 +2066,7 @@ fn drop_corners_back_over_a_through_arm(
     if folded.is_empty() {
         return;
     }
-    let free_end_at: HashMap<u32, &BridgeableEnd> = ends
+    let free_end_at: FastHashMap<u32, &BridgeableEnd> = ends
         .iter()
         .filter(|end| !end.attached)
         .map(|end| (end.vertex, end))
@@ -2189,13 +2194,13 @@ fn cut_arm_end(vertices: &StrokeVertices, corner: &ThroughCorner) -> Option<u32>
 fn drop_t_ends_across_through_corners(
     candidates: &mut Vec<Candidate>,
     through: &[ThroughCandidate],
-    end_at: &HashMap<u32, &BridgeableEnd>,
+    end_at: &FastHashMap<u32, &BridgeableEnd>,
     vertices: &StrokeVertices,
     near: f64,
 ) {
     // Only free ends go through corners ([`through_candidates`]): each one's corners, with
     // their strokes.
-    let mut through_corners: HashMap<u32, Vec<(Point, usize)>> = HashMap::new();
+    let mut through_corners: FastHashMap<u32, Vec<(Point, usize)>> = FastHashMap::default();
     for candidate in through {
         through_corners.entry(candidate.end).or_default().push((
             vertices.positions[candidate.through.corner as usize],
@@ -2271,10 +2276,10 @@ const ON_GAP_MAX_ALONG_COSINE: f64 = std::f64::consts::FRAC_1_SQRT_2;
 /// lost; four drawings of the 2160 change.
 fn defer_ends_on_gaps(
     candidates: &mut [Candidate],
-    end_at: &HashMap<u32, &BridgeableEnd>,
+    end_at: &FastHashMap<u32, &BridgeableEnd>,
     stroke_width: f64,
 ) -> Vec<EndOnGap> {
-    let mut of_vertex: HashMap<u32, Vec<usize>> = HashMap::new();
+    let mut of_vertex: FastHashMap<u32, Vec<usize>> = FastHashMap::default();
     for (index, candidate) in candidates.iter().enumerate() {
         of_vertex.entry(candidate.a).or_default().push(index);
         of_vertex.entry(candidate.b).or_default().push(index);
@@ -2429,7 +2434,7 @@ const FACING_MAX_DEGREES: f64 = 30.0;
 /// stretch a corner bridge runs alongside a stroke ([`alongside_length`]).
 fn into_junction_ink(
     vertices: &StrokeVertices,
-    junction_strokes: &HashMap<u32, Vec<usize>>,
+    junction_strokes: &FastHashMap<u32, Vec<usize>>,
     a: &BridgeableEnd,
     b: &BridgeableEnd,
     stroke_width: f64,
@@ -2480,15 +2485,18 @@ const JUNCTION_INK_REACH_IN_PEN_WIDTHS: f64 = 1.5;
 
 /// For each T-end, the strokes that pass through its junction point (the stroke it ran into),
 /// as (end vertex, stroke) pairs.
-fn strokes_ran_into(vertices: &StrokeVertices, ends: &[BridgeableEnd]) -> HashSet<(u32, usize)> {
-    let mut junctions: HashMap<PointKey, Vec<u32>> = HashMap::new();
+fn strokes_ran_into(
+    vertices: &StrokeVertices,
+    ends: &[BridgeableEnd],
+) -> FastHashSet<(u32, usize)> {
+    let mut junctions: FastHashMap<PointKey, Vec<u32>> = FastHashMap::default();
     for end in ends.iter().filter(|end| end.attached) {
         junctions
             .entry(point_key(end.at))
             .or_default()
             .push(end.vertex);
     }
-    let mut ran_into = HashSet::new();
+    let mut ran_into = FastHashSet::default();
     if junctions.is_empty() {
         return ran_into;
     }
@@ -2520,7 +2528,7 @@ const STUB_TURN_BACK_COST_OFFSET: f64 = 2e9;
 fn turn_back_along_stub(
     a: &BridgeableEnd,
     b: &BridgeableEnd,
-    ran_into: &HashSet<(u32, usize)>,
+    ran_into: &FastHashSet<(u32, usize)>,
 ) -> Option<Candidate> {
     let (t_end, free) = if a.attached && !b.attached && ran_into.contains(&(a.vertex, b.stroke)) {
         (a, b)
@@ -4880,7 +4888,7 @@ mod tests {
             free_end(1, Point::new(709.5, 383.5), Vec2::new(-1.0, 0.09), 0.0),
             free_end(2, Point::new(696.5, 385.5), Vec2::new(0.67, -0.75), 0.0),
         ];
-        let end_at: HashMap<u32, &BridgeableEnd> = ends.iter().map(|e| (e.vertex, e)).collect();
+        let end_at: FastHashMap<u32, &BridgeableEnd> = ends.iter().map(|e| (e.vertex, e)).collect();
         let bridge = |a: u32, b: u32, cost: f64| straight_between(&ends, a, b, cost);
         let mut candidates = vec![bridge(0, 1, 33.3), bridge(0, 2, 23.7), bridge(1, 2, 19.7)];
         let on_gaps = defer_ends_on_gaps(&mut candidates, &end_at, 6.9);
@@ -4902,7 +4910,8 @@ mod tests {
                 free_end(1, Point::new(185.5, 88.5), Vec2::new(-0.99, -0.12), 0.0),
                 free_end(2, Point::new(168.5, 72.5), Vec2::new(-0.32, 0.95), bend),
             ];
-            let end_at: HashMap<u32, &BridgeableEnd> = ends.iter().map(|e| (e.vertex, e)).collect();
+            let end_at: FastHashMap<u32, &BridgeableEnd> =
+                ends.iter().map(|e| (e.vertex, e)).collect();
             let mut corner = straight_between(&ends, 0, 2, 19.0);
             corner.corner = Some(Point::new(167.1, 81.3));
             let mut candidates = vec![straight_between(&ends, 0, 1, 21.5), corner];
@@ -4931,7 +4940,8 @@ mod tests {
                 end(1, 0.0, 50.0, Vec2::new(0.0, -1.0), 0.0),
                 end(2, 0.5, 12.0, curled, bend),
             ];
-            let end_at: HashMap<u32, &BridgeableEnd> = ends.iter().map(|e| (e.vertex, e)).collect();
+            let end_at: FastHashMap<u32, &BridgeableEnd> =
+                ends.iter().map(|e| (e.vertex, e)).collect();
             let bridge = |a: u32, b: u32, cost: f64| straight_between(&ends, a, b, cost);
             let mut candidates = vec![bridge(0, 1, 50.0), bridge(0, 2, 12.0), bridge(1, 2, 38.0)];
             let on_gaps = defer_ends_on_gaps(&mut candidates, &end_at, 3.0);

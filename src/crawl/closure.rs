@@ -22,7 +22,7 @@ use super::strokes::{components, StrokeVertices};
 use super::through::angle;
 use crate::geometry::grid::PointGrid;
 use crate::geometry::polyline::{distances_along, polygon_contains, polyline_length, signed_area};
-use crate::geometry::Polyline;
+use crate::geometry::{FastHashMap, Polyline};
 
 /// DECISION: two free ends side by side are at most this far apart (centre to centre, in widths
 /// of the page's typical stroke) to be joined across: a leg's or finger's two sides drawn 0.5–3
@@ -67,7 +67,7 @@ const ROUND_BODY_MIN_ROUNDNESS: f64 = 0.7;
 pub(super) fn close_across_side_by_side_ends(
     vertices: &StrokeVertices,
     ends: &[BridgeableEnd],
-    attachment: &HashMap<u32, Point>,
+    attachment: &FastHashMap<u32, Point>,
     edges: &mut Vec<(u32, u32)>,
     stroke_width: f64,
 ) {

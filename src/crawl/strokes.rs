@@ -11,7 +11,9 @@
 //! chain into shapes. [`Method::Points`] crawls all samples as one point set with the robust crawl
 //! ([`super::robust`]), and [`Method::Paper`] with the paper's plain crawl, for comparison.
 
-use std::collections::{HashMap, HashSet, VecDeque};
+use std::collections::VecDeque;
+
+use crate::geometry::{FastHashMap, FastHashSet};
 
 use kurbo::{Line, ParamCurveNearest, Point, Vec2};
 
@@ -277,7 +279,7 @@ pub fn connect_measured(
     };
     // A set, not a list: a page of noise has about as many attachment points as curves, and a
     // list searched once per curve end made this step quadratic (16 MP of noise: 70 s).
-    let attached: HashSet<PointKey> = strokes
+    let attached: FastHashSet<PointKey> = strokes
         .iter()
         .flat_map(|s| s.ends)
         .filter_map(|end| match end {
@@ -312,7 +314,12 @@ pub(super) fn point_key(p: Point) -> PointKey {
 
 /// Moves the first (or last) point of an open curve `extension` further along the curve's
 /// direction there, unless it is a T-junction attachment point.
-fn extend_end(points: &mut [Point], at_last: bool, extension: f64, attached: &HashSet<PointKey>) {
+fn extend_end(
+    points: &mut [Point],
+    at_last: bool,
+    extension: f64,
+    attached: &FastHashSet<PointKey>,
+) {
     let n = points.len();
     let (end, inner) = if at_last { (n - 1, n - 2) } else { (0, 1) };
     if attached.contains(&point_key(points[end])) {
@@ -359,10 +366,10 @@ pub(super) struct StrokeVertices {
     /// Whether each stroke is closed (its last vertex joined to its first).
     pub(super) closed: Vec<bool>,
     /// For a dot, half the length of the dash it stands for: gaps are measured from its rim.
-    pub(super) dot_radius: HashMap<u32, f64>,
+    pub(super) dot_radius: FastHashMap<u32, f64>,
     /// For a dot, the samples of the dash it stands for, to draw it back in the output as drawn:
     /// a dash that turns a corner (the pen's short stroke at a shape's corner) keeps its corner.
-    pub(super) dot_dash: HashMap<u32, Vec<Point>>,
+    pub(super) dot_dash: FastHashMap<u32, Vec<Point>>,
 }
 
 impl StrokeVertices {
@@ -375,7 +382,7 @@ impl StrokeVertices {
     /// to the same end and leave the shape open.
     fn new(strokes: &[Stroke], spacing: f64) -> Self {
         let mut vertices = Self::default();
-        let mut vertex_at: HashMap<PointKey, u32> = HashMap::new();
+        let mut vertex_at: FastHashMap<PointKey, u32> = FastHashMap::default();
         let dot_of = |stroke: &Stroke| -> Option<(Point, f64)> {
             let points = &stroke.line.points;
             let (first, last) = (*points.first()?, *points.last()?);
@@ -507,14 +514,14 @@ pub fn connect_strokes(
         typical_gap,
     } = match_gap_bridges(&vertices, &ends, spacing, stroke_width);
     // An arm cut off an opened corner ends on the corner point, like a T-end.
-    let cut: HashSet<(u32, u32)> = cuts
+    let cut: FastHashSet<(u32, u32)> = cuts
         .iter()
         .flat_map(|c| [(c.arm, c.corner), (c.corner, c.arm)])
         .collect();
     edges.retain(|edge| !cut.contains(edge));
-    let bridged: HashSet<u32> = bridges.iter().flat_map(|b| [b.a, b.b]).collect();
+    let bridged: FastHashSet<u32> = bridges.iter().flat_map(|b| [b.a, b.b]).collect();
     // T-ends that took no bridge end on the stroke they ran into.
-    let attachment: HashMap<u32, Point> = ends
+    let attachment: FastHashMap<u32, Point> = ends
         .iter()
         .filter(|end| end.attached && !bridged.contains(&end.vertex))
         .map(|end| (end.vertex, end.at))
@@ -527,7 +534,7 @@ pub fn connect_strokes(
         .collect();
     edges.extend(bridges.iter().map(|bridge| (bridge.a, bridge.b)));
     close_across_side_by_side_ends(&vertices, &ends, &attachment, &mut edges, stroke_width);
-    let vias: HashMap<(u32, u32), Vec<Point>> = bridges
+    let vias: FastHashMap<(u32, u32), Vec<Point>> = bridges
         .into_iter()
         .filter(|bridge| !bridge.via.is_empty())
         .map(|bridge| ((bridge.a, bridge.b), bridge.via))
@@ -537,7 +544,7 @@ pub fn connect_strokes(
     // and cycles: the shapes. The paper's stop would only cut a chain where an outline comes back
     // near itself (an '8', a narrow neck); which gaps close is decided by the bridges alone.
     // A wide stroke left on its own, no bridge taken, is a lone band ([`super::bands`]).
-    let wide_at_end: HashMap<u32, usize> = strokes
+    let wide_at_end: FastHashMap<u32, usize> = strokes
         .iter()
         .enumerate()
         .filter(|(s, stroke)| stroke.wide && vertices.of_stroke[*s].len() >= 2)
@@ -659,7 +666,7 @@ const LOOP_CLOSING_ARM_IN_PEN_WIDTHS: f64 = 2.0;
 fn loop_and_tail(
     chain: Chain,
     vertices: &StrokeVertices,
-    attachment: &HashMap<u32, Point>,
+    attachment: &FastHashMap<u32, Point>,
     stroke_width: f64,
     typical_gap: f64,
 ) -> Vec<Chain> {
@@ -814,8 +821,8 @@ pub(super) fn components(vertex_count: usize, edges: &[(u32, u32)]) -> Vec<Chain
 fn chain_to_curve(
     chain: Chain,
     vertices: &StrokeVertices,
-    attachment: &HashMap<u32, Point>,
-    vias: &HashMap<(u32, u32), Vec<Point>>,
+    attachment: &FastHashMap<u32, Point>,
+    vias: &FastHashMap<(u32, u32), Vec<Point>>,
 ) -> Polyline {
     let positions = &vertices.positions;
     let order = canonical_orientation(chain.vertices, chain.closed);
@@ -1066,7 +1073,7 @@ mod tests {
         // within an ordinary bridge of a 6-px typical gap. Cut there: the balloon closed, the
         // string open.
         let (vertices, chain) = balloon_chain(22.0, &[(62.0, 120.0)]);
-        let pieces = loop_and_tail(chain, &vertices, &HashMap::new(), 3.0, 6.0);
+        let pieces = loop_and_tail(chain, &vertices, &FastHashMap::default(), 3.0, 6.0);
         assert_eq!(pieces.len(), 2, "{pieces:?}");
         assert!(pieces[0].closed && !pieces[1].closed, "{pieces:?}");
         let knot = vertices.positions[*pieces[1].vertices.front().unwrap() as usize];
@@ -1079,7 +1086,7 @@ mod tests {
         // than a straight bridge turns, but half of that turn is at each end of the gap: the
         // circle's arc. A 28-px gap, within an ordinary bridge of a 14-px typical gap.
         let (vertices, chain) = balloon_chain(55.0, &[(62.0, 140.0)]);
-        let pieces = loop_and_tail(chain, &vertices, &HashMap::new(), 3.0, 14.0);
+        let pieces = loop_and_tail(chain, &vertices, &FastHashMap::default(), 3.0, 14.0);
         assert_eq!(pieces.len(), 2, "{pieces:?}");
         assert!(pieces[0].closed && !pieces[1].closed, "{pieces:?}");
     }
@@ -1090,7 +1097,7 @@ mod tests {
         // first end, no nearer to it than the knot: the two ends of one outline near each other
         // (a keyhole's slot), which close it whole, not a loop and a tail.
         let (vertices, chain) = balloon_chain(55.0, &[(50.0, 130.0), (-3.0, 130.0), (-3.0, 67.0)]);
-        let pieces = loop_and_tail(chain, &vertices, &HashMap::new(), 3.0, 14.0);
+        let pieces = loop_and_tail(chain, &vertices, &FastHashMap::default(), 3.0, 14.0);
         assert_eq!(pieces.len(), 1, "{pieces:?}");
     }
 
@@ -1292,7 +1299,8 @@ mod tests {
         assert_eq!(curves.len(), 1, "{curves:?}");
         assert!(curves[0].closed);
         // Every stroke's points are on it (its gaps bridged along the circle add more).
-        let on_curve: HashSet<PointKey> = curves[0].points.iter().map(|&p| point_key(p)).collect();
+        let on_curve: FastHashSet<PointKey> =
+            curves[0].points.iter().map(|&p| point_key(p)).collect();
         for stroke in &strokes {
             assert!(stroke
                 .line

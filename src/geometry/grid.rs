@@ -5,39 +5,11 @@
 
 use std::collections::hash_map::Entry;
 use std::collections::HashMap;
-use std::hash::{BuildHasherDefault, Hasher};
+use std::hash::BuildHasherDefault;
 
 use kurbo::Point;
 
-use super::floor_to_i64;
-
-/// A hasher for cell coordinates: a multiply and a rotate per coordinate. The standard library's
-/// SipHash guards against keys chosen to collide, which a grid of pixel cells need not fear, and
-/// cost a fifth of the crawl's time on a page of noise. The cells' order never shows: `around`
-/// visits cells in a fixed order, whatever the map's.
-#[derive(Default)]
-struct CellHasher(u64);
-
-impl Hasher for CellHasher {
-    fn finish(&self) -> u64 {
-        self.0
-    }
-
-    fn write(&mut self, bytes: &[u8]) {
-        for &byte in bytes {
-            self.write_u64(u64::from(byte));
-        }
-    }
-
-    fn write_u64(&mut self, value: u64) {
-        // The multiplier is 2^64 over the golden ratio (Fibonacci hashing, Knuth, TAOCP vol. 3).
-        self.0 = (self.0.rotate_left(5) ^ value).wrapping_mul(0x9E37_79B9_7F4A_7C15);
-    }
-
-    fn write_i64(&mut self, value: i64) {
-        self.write_u64(value as u64);
-    }
-}
+use super::{floor_to_i64, FastHasher};
 
 /// Items placed at points, in square cells of a fixed size.
 ///
@@ -47,7 +19,7 @@ impl Hasher for CellHasher {
 #[derive(Clone, Debug)]
 pub(crate) struct PointGrid<T> {
     cell: f64,
-    cells: HashMap<(i64, i64), (u32, u32), BuildHasherDefault<CellHasher>>,
+    cells: HashMap<(i64, i64), (u32, u32), BuildHasherDefault<FastHasher>>,
     items: Vec<(T, u32)>,
 }
 
