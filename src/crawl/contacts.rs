@@ -251,20 +251,11 @@ pub fn join_lassos(curves: &mut Vec<Polyline>, stroke_width: f64) {
     }
     let on_curve = END_ON_CURVE_IN_PEN_WIDTHS * stroke_width;
     let together = LASSO_ROPES_TOGETHER_IN_PEN_WIDTHS * stroke_width;
-    let loops: Vec<usize> = (0..curves.len())
-        .filter(|&c| curves[c].closed && curves[c].points.len() >= 3)
-        .collect();
+    let loops = loop_indices(curves);
     if loops.is_empty() {
         return;
     }
-    // The open curves' ends by position, (curve, at its start).
-    let mut ends = PointGrid::new(on_curve.max(1.0));
-    for (c, curve) in curves.iter().enumerate() {
-        if !curve.closed && curve.points.len() >= 2 {
-            ends.insert(curve.points[0], (c, true));
-            ends.insert(curve.points[curve.points.len() - 1], (c, false));
-        }
-    }
+    let ends = open_ends_by_position(curves, on_curve);
     let mut used = vec![false; curves.len()];
     let mut removed = vec![false; curves.len()];
     for &l in &loops {
@@ -363,21 +354,11 @@ pub fn join_coils_through_loops(curves: &mut Vec<Polyline>, stroke_width: f64) {
     }
     let reach = CONTACT_IN_PEN_WIDTHS * stroke_width;
     let min_cosine = TOUCH_MAX_ANGLE_DEGREES.to_radians().cos();
-    let loops: Vec<usize> = (0..curves.len())
-        .filter(|&c| curves[c].closed && curves[c].points.len() >= 3)
-        .collect();
+    let loops = loop_indices(curves);
     if loops.is_empty() {
         return;
     }
-    // The open curves' ends by position, (curve, at its start): a page of noise has ten
-    // thousand open curves and a hundred loops.
-    let mut open_ends = PointGrid::new(reach.max(1.0));
-    for (c, curve) in curves.iter().enumerate() {
-        if !curve.closed && curve.points.len() >= 2 {
-            open_ends.insert(curve.points[0], (c, true));
-            open_ends.insert(curve.points[curve.points.len() - 1], (c, false));
-        }
-    }
+    let open_ends = open_ends_by_position(curves, reach);
     let mut used = vec![false; curves.len()];
     let mut removed = vec![false; curves.len()];
     for &l in &loops {
@@ -473,6 +454,26 @@ pub fn join_coils_through_loops(curves: &mut Vec<Polyline>, stroke_width: f64) {
         removed[c] = true;
     }
     remove_marked(curves, &removed);
+}
+
+/// The closed curves of `curves` with at least three points, in order.
+fn loop_indices(curves: &[Polyline]) -> Vec<usize> {
+    (0..curves.len())
+        .filter(|&c| curves[c].closed && curves[c].points.len() >= 3)
+        .collect()
+}
+
+/// The open curves' ends by position, (curve, at its start), in cells `cell` wide (at least a
+/// pixel): a page of noise has ten thousand open curves and a hundred loops.
+fn open_ends_by_position(curves: &[Polyline], cell: f64) -> PointGrid<(usize, bool)> {
+    let mut ends = PointGrid::new(cell.max(1.0));
+    for (c, curve) in curves.iter().enumerate() {
+        if !curve.closed && curve.points.len() >= 2 {
+            ends.insert(curve.points[0], (c, true));
+            ends.insert(curve.points[curve.points.len() - 1], (c, false));
+        }
+    }
+    ends
 }
 
 /// The point at the start (or end) of the open curve `curve`.
