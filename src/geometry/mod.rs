@@ -1,5 +1,6 @@
 //! Geometry shared by the stages: [`Polyline`] (length, simplification, resampling),
-//! [`UnionFind`] and a grid of points for finding what lies near one (`grid::PointGrid`).
+//! [`UnionFind`], a grid of points for finding what lies near one (`grid::PointGrid`), and two
+//! speed helpers: a hasher for small integer keys and a floor without a library call.
 
 pub(crate) mod grid;
 pub mod polyline;
