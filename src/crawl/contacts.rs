@@ -305,17 +305,8 @@ pub fn join_lassos(curves: &mut Vec<Polyline>, stroke_width: f64) {
         let Some(at) = nearest_point_index(&curves[l].points, a_end) else {
             continue;
         };
-        let mut joined = curves[a].points.clone();
-        if a_start {
-            joined.reverse();
-        }
-        joined.extend(once_round(&curves[l].points, at));
-        let mut rope = curves[c].points.clone();
-        if !c_start {
-            rope.reverse();
-        }
-        joined.extend(rope);
-        curves[a] = Polyline::new(joined, false);
+        let through = once_round(&curves[l].points, at);
+        join_through_loop(curves, (a, a_start), through, (c, c_start));
         for k in [l, c, a] {
             used[k] = true;
         }
@@ -431,22 +422,13 @@ pub fn join_coils_through_loops(curves: &mut Vec<Polyline>, stroke_width: f64) {
             ring.reverse();
             (n - 1 - ka, n - 1 - kc)
         };
-        let mut joined = curves[a].points.clone();
-        if a_start {
-            joined.reverse();
-        }
-        joined.extend(once_round(&ring, ka));
+        let mut through = once_round(&ring, ka);
         let mut k = ka;
         while k != kc {
             k = (k + 1) % n;
-            joined.push(ring[k]);
+            through.push(ring[k]);
         }
-        let mut tail = curves[c].points.clone();
-        if !c_start {
-            tail.reverse();
-        }
-        joined.extend(tail);
-        curves[a] = Polyline::new(joined, false);
+        join_through_loop(curves, (a, a_start), through, (c, c_start));
         for k in [l, c, a] {
             used[k] = true;
         }
@@ -454,6 +436,28 @@ pub fn join_coils_through_loops(curves: &mut Vec<Polyline>, stroke_width: f64) {
         removed[c] = true;
     }
     remove_marked(curves, &removed);
+}
+
+/// Makes the open curve `first` (curve, whether its start is its end on a loop) run on through
+/// `through` (the loop's points it passes) into the open curve `second` (the same), from their
+/// ends on the loop: `first` becomes the joined curve; the caller removes the loop and `second`.
+fn join_through_loop(
+    curves: &mut [Polyline],
+    first: (usize, bool),
+    through: Vec<Point>,
+    second: (usize, bool),
+) {
+    let mut joined = curves[first.0].points.clone();
+    if first.1 {
+        joined.reverse();
+    }
+    joined.extend(through);
+    let mut rest = curves[second.0].points.clone();
+    if !second.1 {
+        rest.reverse();
+    }
+    joined.extend(rest);
+    curves[first.0] = Polyline::new(joined, false);
 }
 
 /// The closed curves of `curves` with at least three points, in order.

@@ -15,7 +15,7 @@ use std::hash::{BuildHasherDefault, Hasher};
 /// A hasher for small integer keys (grid cells, vertex and curve numbers): a multiply and a
 /// rotate per word. The standard library's SipHash guards against keys chosen to collide, which
 /// cells and vertex numbers need not fear, and cost a fifth of the crawl's time on a page of noise
-/// in the grids, and 5 % of a page's instructions in the bridges' maps. No output depends on a
+/// in the grids, and 4 % of a page's instructions in the bridges' maps. No output depends on a
 /// map's order: the standard maps' order was already random from run to run.
 #[derive(Default)]
 pub(crate) struct FastHasher(u64);
