@@ -381,10 +381,7 @@ pub fn join_coils_through_loops(curves: &mut Vec<Polyline>, stroke_width: f64) {
                 ends.push((c, at_start, k, way / way.hypot()));
             }
         }
-        // (the stretch along the loop, first curve, at its start, its loop point, second curve,
-        // at its start, its loop point, whether the way is the loop's own)
-        type Coil = (f64, usize, bool, usize, usize, bool, usize, bool);
-        let mut best: Option<Coil> = None;
+        let mut best: Option<CoilJoin> = None;
         for &(a, a_start, ka, arrive) in &ends {
             let along_a = direction_at(&curves[l], ka).dot(arrive);
             if along_a.abs() < min_cosine {
@@ -407,12 +404,27 @@ pub fn join_coils_through_loops(curves: &mut Vec<Polyline>, stroke_width: f64) {
                     stretch += ring[k].distance(ring[next]);
                     k = next;
                 }
-                if stretch <= round / 2.0 && best.is_none_or(|b| stretch < b.0) {
-                    best = Some((stretch, a, a_start, ka, c, c_start, kc, forward));
+                if stretch <= round / 2.0 && best.is_none_or(|b| stretch < b.stretch) {
+                    best = Some(CoilJoin {
+                        stretch,
+                        first: (a, a_start),
+                        first_at: ka,
+                        second: (c, c_start),
+                        second_at: kc,
+                        forward,
+                    });
                 }
             }
         }
-        let Some((_, a, a_start, ka, c, c_start, kc, forward)) = best else {
+        let Some(CoilJoin {
+            first: (a, a_start),
+            first_at: ka,
+            second: (c, c_start),
+            second_at: kc,
+            forward,
+            ..
+        }) = best
+        else {
             continue;
         };
         let mut ring = curves[l].points.clone();
@@ -436,6 +448,19 @@ pub fn join_coils_through_loops(curves: &mut Vec<Polyline>, stroke_width: f64) {
         removed[c] = true;
     }
     remove_marked(curves, &removed);
+}
+
+/// A candidate of [`join_coils_through_loops`]: two open curves, each (curve, whether its start
+/// is its end on the loop), with the loop's points nearest their ends, the length of the loop
+/// between those points, and whether the first curve arrives the loop's own way round.
+#[derive(Clone, Copy)]
+struct CoilJoin {
+    stretch: f64,
+    first: (usize, bool),
+    first_at: usize,
+    second: (usize, bool),
+    second_at: usize,
+    forward: bool,
 }
 
 /// Makes the open curve `first` (curve, whether its start is its end on a loop) run on through
