@@ -501,6 +501,56 @@ fn turn_over_arms(walk: &ArcWalk, i: usize, arm: f64) -> Option<f64> {
     Some(signed_turn(incoming, outgoing).abs().to_degrees())
 }
 
+/// DECISION: (stop 68) a vertex turning less than [`MAX_STRAIGHT_MEETS_CURVE_TURN_DEGREES`]
+/// whose one arm runs straight over its line (the two halves of the line within
+/// [`MAX_STRAIGHT_ARM_BEND_DEGREES`] of each other) while the other curves on by at least
+/// [`MIN_CURVING_ARM_BEND_DEGREES`] is a corner where a straight line meets a curve, not a
+/// thinned acute tip: a thinned tip's arms run straight once past the rounding, and a 60° tip
+/// measures 103°–111° over the detection arms only because both arms close in on each other. A
+/// square corner (a cloud's end, where its base line meets the first lobe's side, which is only
+/// a pen width or two tall before it curves over into the lobe) measures over 100° there because
+/// the curving arm's far part leans back over the corner; that arm's line, a chord of the lobe,
+/// crosses the base line's a pen width beyond the corner the ink shows, and the apex went there
+/// (5–7 px off on thick clouds, `objects-thick-002` of seed 6 and `objects-thick-022` of seed
+/// 11). Such a corner keeps the vertex thinning left, on the ink's corner. Measured on the
+/// benchmark (exact): seed 6 +1 (`objects-thick-002`), nothing lost on any split; validation
+/// seeds 2 and 12 and held-out seed 4 unchanged; of the development drawings exact either way
+/// the worst distance shrank on 16 (five thin fingers 2.0 → 1.2 px) and grew on two (0.1 px). The same from a
+/// curving arm of 10° to 40°, a straight arm of 2° to 10°, and a turn bound of 105° to 115°; at
+/// 120° seed 12 −1. Any two arms bending apart by 20° (both may curve a little): +3 −3 on
+/// development (thin pens' arms, 2.5 pen widths a few pixels long, bend 20°–35° by pixels alone,
+/// both ways at once), seed 12 +1 −4: the straight arm is what marks a line meeting a curve.
+const MAX_STRAIGHT_MEETS_CURVE_TURN_DEGREES: f64 = 110.0;
+/// ... the straight arm's two halves within this much (degrees) of each other ...
+const MAX_STRAIGHT_ARM_BEND_DEGREES: f64 = 5.0;
+/// ... and the curving arm's at least this much (degrees) apart.
+const MIN_CURVING_ARM_BEND_DEGREES: f64 = 25.0;
+
+/// Whether vertex `i`, turning `turn_degrees` over the detection arms, is a straight line meeting
+/// a curve ([`MAX_STRAIGHT_MEETS_CURVE_TURN_DEGREES`]): each arm's bend read between the two
+/// halves of its line, `line` long from `rounded` out.
+fn straight_meets_curve(
+    walk: &ArcWalk,
+    i: usize,
+    turn_degrees: f64,
+    rounded: f64,
+    line: f64,
+) -> bool {
+    if turn_degrees >= MAX_STRAIGHT_MEETS_CURVE_TURN_DEGREES {
+        return false;
+    }
+    let bend = |sign: f64| {
+        let at = |d: f64| walk.at(i, sign * d).map(|(p, _)| p);
+        let (near, mid, far) = (at(rounded)?, at(rounded + line / 2.0)?, at(rounded + line)?);
+        Some(signed_turn(mid - far, near - mid).abs().to_degrees())
+    };
+    let (Some(before), Some(after)) = (bend(-1.0), bend(1.0)) else {
+        return false;
+    };
+    let (straight, curving) = (before.min(after), before.max(after));
+    straight <= MAX_STRAIGHT_ARM_BEND_DEGREES && curving >= MIN_CURVING_ARM_BEND_DEGREES
+}
+
 /// The apex of the tip at vertex `i`: where the lines of its two arms meet, past the rounding.
 fn recover_apex(
     walk: &ArcWalk,
@@ -527,6 +577,9 @@ fn recover_apex(
         near_after,
         PARALLEL_SINE,
     )?;
+    if straight_meets_curve(walk, i, turn_degrees, rounded, line) {
+        return None;
+    }
     // The apex lies ahead of both arms' rounded ends and not far from the curve.
     let ahead = |far: Point, near: Point| (apex - near).dot(near - far) > 0.0;
     // It lies beyond the rounded vertex, seen from the arms: recovering a tip never shortens it.
