@@ -1219,4 +1219,33 @@ mod tests {
         restore_tips(&mut curves, &mask, 4.0);
         assert_eq!(curves[0].points, points);
     }
+
+    #[test]
+    fn a_straight_line_meeting_a_curve_is_no_tip_but_a_v_is() {
+        // A straight arm along the x axis up to the vertex, then a circle of radius 5 that
+        // leaves the vertex square to it and curves back over it: a cloud's base meeting its
+        // first lobe. Points every half pixel.
+        let mut points: Vec<Point> = (0..=60).map(|k| Point::new(0.5 * k as f64, 0.0)).collect();
+        let vertex = points.len() - 1;
+        points.extend((1..=60).map(|k| {
+            let t = k as f64 * 0.1;
+            Point::new(25.0 + 5.0 * t.cos(), 5.0 * t.sin())
+        }));
+        let curve = Polyline::new(points, false);
+        let walk = ArcWalk::new(&curve);
+        assert!(straight_meets_curve(&walk, vertex, 100.0, 0.0, 7.5));
+        // Turning as much as a tip does, it is left to the tip's tests.
+        assert!(!straight_meets_curve(&walk, vertex, 115.0, 0.0, 7.5));
+        // Two straight arms (a V) are a tip's.
+        let mut v: Vec<Point> = (0..=60).map(|k| Point::new(0.5 * k as f64, 0.0)).collect();
+        v.extend((1..=60).map(|k| Point::new(30.0 - 0.25 * k as f64, 0.43 * k as f64)));
+        let v = Polyline::new(v, false);
+        assert!(!straight_meets_curve(
+            &ArcWalk::new(&v),
+            vertex,
+            100.0,
+            0.0,
+            7.5
+        ));
+    }
 }

@@ -336,3 +336,36 @@ fn a_square_waves_corner_in_a_pen_lift_is_bridged() {
     assert_traces_exactly(11, "spirals-waves", "thin", 2);
     assert_traces_exactly(11, "spirals-waves", "thin", 7);
 }
+
+/// A thick cloud whose base line meets its first lobe's side, a pen width or two tall before it
+/// curves over: the square corner stays on the ink, not where the base's line meets a chord of
+/// the lobe (stop 68, `straight_meets_curve` in the tips).
+#[test]
+fn a_straight_line_meeting_a_curve_keeps_its_corner_on_the_ink() {
+    assert_traces_exactly(6, "objects", "thick", 2);
+}
+
+/// A scanned "X" and an eight's waist whose pen lift fell at the crossing: the two lines go on
+/// straight across, crossing, where a corner was taken first (stop 68, `repair_pairings`).
+#[test]
+fn lines_lifted_at_their_crossing_go_on_straight_across() {
+    assert_traces_exactly(11, "letters", "scan", 19);
+    assert_traces_exactly(7, "figure-eight", "scan", 0);
+}
+
+/// A thick "S" whose two ends each reached a corner of its own spine only as a last resort: held
+/// to the ordinary gap limit, it stays open (stop 68, `Matching::match_pass`).
+#[test]
+fn a_last_resort_corner_closes_no_loop_beyond_the_gap_limit() {
+    assert_traces_exactly(11, "letters", "thick", 2);
+}
+
+/// Legs and a finger whose end fell in a pen lift, one side stopping a pen width or more short
+/// of the other: the join is a flat end square to the band, not the chord (stop 68,
+/// `flat_end_corner`).
+#[test]
+fn a_staggered_band_end_is_drawn_flat() {
+    assert_traces_exactly(3, "animals", "thick", 1);
+    assert_traces_exactly(7, "animals", "thin", 4);
+    assert_traces_exactly(11, "spikes", "clean", 0);
+}
