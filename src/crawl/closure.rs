@@ -63,14 +63,15 @@ const ROUND_BODY_MIN_ROUNDNESS: f64 = 0.7;
 
 /// Joins free ends of open chains that stop side by side (see the module documentation), adding
 /// the joins to `edges`. `attachment` holds the ends that end on another stroke (they are not
-/// free).
+/// free). Returns the corner each join whose ends stop staggered across a band's end is drawn
+/// through ([`flat_end_corner`]), by its edge; the other joins are drawn straight.
 pub(super) fn close_across_side_by_side_ends(
     vertices: &StrokeVertices,
     ends: &[BridgeableEnd],
     attachment: &FastHashMap<u32, Point>,
     edges: &mut Vec<(u32, u32)>,
     stroke_width: f64,
-) {
+) -> Vec<((u32, u32), Point)> {
     let reach = SIDE_BY_SIDE_MAX_IN_PEN_WIDTHS * stroke_width;
     let positions = &vertices.positions;
     let free: HashMap<u32, Vec2> = ends
@@ -87,7 +88,7 @@ pub(super) fn close_across_side_by_side_ends(
         .filter(|v| free.contains_key(v))
         .collect();
     if chain_ends.len() < 2 {
-        return;
+        return Vec::new();
     }
     chain_ends.sort_by(|a, b| {
         positions[*a as usize]
@@ -115,7 +116,7 @@ pub(super) fn close_across_side_by_side_ends(
         }
     }
     if candidates.is_empty() {
-        return;
+        return Vec::new();
     }
     candidates.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)).then(x.2.cmp(&y.2)));
     let mut used: HashSet<u32> = HashSet::new();
@@ -159,8 +160,21 @@ pub(super) fn close_across_side_by_side_ends(
             kept.extend(joined.iter().map(|&(u, v)| (u.min(v), u.max(v))));
         }
     }
-    let added: Vec<(u32, u32)> = edges.drain(base..).collect();
-    edges.extend(added.into_iter().filter(|edge| kept.contains(edge)));
+    let added: Vec<(u32, u32)> = edges
+        .drain(base..)
+        .filter(|edge| kept.contains(edge))
+        .collect();
+    edges.extend(added.iter().copied());
+    added
+        .into_iter()
+        .filter_map(|(u, v)| {
+            let ((at_u, way_u), (at_v, way_v)) = (end_of(u), end_of(v));
+            Some((
+                (u, v),
+                flat_end_corner(at_u, way_u, at_v, way_v, stroke_width)?,
+            ))
+        })
+        .collect()
 }
 
 /// Whether a loop of `points` (closed, or an open chain) holds a body, not two lines side by
@@ -261,7 +275,7 @@ const FLAT_END_MAX_SPREAD_DEGREES: f64 = 70.0;
 /// The corner of the flat end across the free ends at `a` (going `way_a`) and `b` (going
 /// `way_b`) that a join takes across a band's end ([`FLAT_END_MIN_STAGGER_IN_PEN_WIDTHS`]); none
 /// where the chord between them is drawn.
-pub(super) fn flat_end_corner(
+fn flat_end_corner(
     a: Point,
     way_a: Vec2,
     b: Point,

@@ -24,7 +24,7 @@ use super::bridges::{
     MAX_STRAIGHT_TURN_DEGREES,
 };
 use super::closure::{
-    close_across_side_by_side_ends, close_curves_ending_on_themselves, flat_end_corner,
+    close_across_side_by_side_ends, close_curves_ending_on_themselves,
     join_holes_touching_their_outline, thread_loops_through_shared_necks,
 };
 use super::hairpins::open_hairpins;
@@ -533,28 +533,19 @@ pub fn connect_strokes(
         .chain(attached)
         .collect();
     edges.extend(bridges.iter().map(|bridge| (bridge.a, bridge.b)));
-    let joined_from = edges.len();
-    close_across_side_by_side_ends(&vertices, &ends, &attachment, &mut edges, stroke_width);
+    let flat_ends =
+        close_across_side_by_side_ends(&vertices, &ends, &attachment, &mut edges, stroke_width);
     let mut vias: FastHashMap<(u32, u32), Vec<Point>> = bridges
         .into_iter()
         .filter(|bridge| !bridge.via.is_empty())
         .map(|bridge| ((bridge.a, bridge.b), bridge.via))
         .collect();
-    // A join across a band's end whose two sides stop staggered is drawn as a flat end
-    // ([`flat_end_corner`]).
-    let way_of: FastHashMap<u32, Vec2> = ends
-        .iter()
-        .filter(|end| !end.attached)
-        .filter_map(|end| Some((end.vertex, end.outward?)))
-        .collect();
-    for &(u, v) in &edges[joined_from..] {
-        if let (Some(&way_u), Some(&way_v)) = (way_of.get(&u), way_of.get(&v)) {
-            let (at_u, at_v) = (positions[u as usize], positions[v as usize]);
-            if let Some(corner) = flat_end_corner(at_u, way_u, at_v, way_v, stroke_width) {
-                vias.insert((u, v), vec![corner]);
-            }
-        }
-    }
+    // A join across a band's end whose two sides stop staggered is drawn as a flat end.
+    vias.extend(
+        flat_ends
+            .into_iter()
+            .map(|(edge, corner)| (edge, vec![corner])),
+    );
     // DECISION: no `d > d1` stop here. Every vertex of the stroke + bridge graph has at most two
     // edges (a stroke's own, and one bridge per free end), so its components are already paths
     // and cycles: the shapes. The paper's stop would only cut a chain where an outline comes back
