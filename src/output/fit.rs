@@ -571,15 +571,20 @@ fn stays_near_stretch(
         }
         let interval = (data_index / SPLINE_POINTS_PER_INTERVAL).min(intervals - 1);
         let q = cubic.eval(u);
-        let near = (interval.saturating_sub(1)..(interval + 2).min(intervals))
-            .map(|i| {
+        // Near when one of the intervals lies within `limit`, looked at only until one does: the
+        // same as their least distance within it (a NaN distance is never near, and a NaN or
+        // infinite limit passes every point, as the least distance compared with it did).
+        let limit = allowed * allowed;
+        let near = limit.is_nan()
+            || limit == f64::INFINITY
+            || (interval.saturating_sub(1)..(interval + 2).min(intervals)).any(|i| {
                 // The accuracy argument is for curves: a line's nearest point is exact.
                 Line::new(stretch[i], stretch[i + 1])
                     .nearest(q, 1e-9)
                     .distance_sq
-            })
-            .fold(f64::INFINITY, f64::min);
-        if near > allowed * allowed {
+                    <= limit
+            });
+        if !near {
             return false;
         }
     }

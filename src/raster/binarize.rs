@@ -470,6 +470,9 @@ struct Background {
     histogram: [u64; 256],
 }
 
+/// The histograms a block's pixels are counted in by turns ([`Background::estimate`]).
+const HISTOGRAM_LANES: usize = 4;
+
 impl Background {
     fn estimate(gray: &GrayImage, invert: bool) -> Self {
         let (width, height) = (gray.width() as usize, gray.height() as usize);
@@ -489,11 +492,20 @@ impl Background {
         };
         let mut raw_levels = Vec::with_capacity(columns * rows);
         let mut histogram = [0u64; 256];
-        let mut block_histograms = vec![[0u32; 256]; columns];
+        // Each block counts its pixels in HISTOGRAM_LANES histograms, a pixel's lane its place in
+        // the row modulo the lanes, summed once the block is done: paper is one level over most
+        // of a page, and a single histogram then waits on the last pixel's count before it can
+        // add the next (a store forwarded to the next load, several cycles a pixel).
+        let mut block_histograms = vec![[[0u32; 256]; HISTOGRAM_LANES]; columns];
+        let mut block = [0u32; 256];
+        // 255 - value for a byte.
+        let flip = if invert { u8::MAX } else { 0 };
         let pixels = gray.as_raw();
         for block_row in 0..rows {
-            for block in &mut block_histograms {
-                block.fill(0);
+            for lanes in &mut block_histograms {
+                for lane in lanes.iter_mut() {
+                    lane.fill(0);
+                }
             }
             let (top, bottom) = (
                 block_row * block_size,
@@ -501,18 +513,26 @@ impl Background {
             );
             for y in top..bottom {
                 let row = &pixels[y * width..(y + 1) * width];
-                for (segment, block) in row.chunks(block_size).zip(&mut block_histograms) {
-                    for &value in segment {
-                        let value = if invert { 255 - value } else { value };
-                        block[usize::from(value)] += 1;
+                for (segment, lanes) in row.chunks(block_size).zip(&mut block_histograms) {
+                    let mut groups = segment.chunks_exact(HISTOGRAM_LANES);
+                    for group in &mut groups {
+                        for (lane, &value) in lanes.iter_mut().zip(group) {
+                            lane[usize::from(value ^ flip)] += 1;
+                        }
+                    }
+                    for &value in groups.remainder() {
+                        lanes[0][usize::from(value ^ flip)] += 1;
                     }
                 }
             }
-            for block in &block_histograms {
+            for lanes in &block_histograms {
+                for (level, count) in block.iter_mut().enumerate() {
+                    *count = lanes.iter().map(|lane| lane[level]).sum();
+                }
                 for (total, &count) in histogram.iter_mut().zip(block.iter()) {
                     *total += u64::from(count);
                 }
-                raw_levels.push(percentile(block, BACKGROUND_PERCENTILE));
+                raw_levels.push(percentile(&block, BACKGROUND_PERCENTILE));
             }
         }
         let levels = replace_inked_blocks(&raw_levels, columns, rows);

@@ -365,12 +365,14 @@ fn band_end_cut_with(
         return None;
     }
     let wide_window = |k: usize| {
-        let run: Vec<f64> = widths[k..k + stretch].iter().flatten().copied().collect();
+        // Summed in place, not collected first: this runs at every window of every stroke.
+        let window = &widths[k..k + stretch];
+        let measured = window.iter().flatten().count();
         // Half the window unmeasured (the direction undefined) says nothing.
-        if 2 * run.len() < stretch {
+        if 2 * measured < stretch {
             return false;
         }
-        judge.is_wide(run.iter().sum::<f64>() / run.len() as f64)
+        judge.is_wide(window.iter().flatten().sum::<f64>() / measured as f64)
     };
     // The runs of wide windows (a corner's cross-section is wide for a pen width or two, as it
     // crosses the other arm; a band's for many), as window starts from..to.
