@@ -369,3 +369,12 @@ fn a_staggered_band_end_is_drawn_flat() {
     assert_traces_exactly(7, "animals", "thin", 4);
     assert_traces_exactly(11, "spikes", "clean", 0);
 }
+
+/// An animal whose thin tail's two sides meet the body's line in one four-way junction at its
+/// base: the straightest pairing crossed, both pairs turning by 45° and more, and the junction
+/// takes the pairing that does not cross (stop 69,
+/// `outline_instead_of_bent_crossing` in the junctions).
+#[test]
+fn a_bent_crossing_is_an_outline_touching_itself() {
+    assert_traces_exactly(11, "animals", "clean", 21);
+}
