@@ -13,6 +13,7 @@ mod bands;
 pub mod bases;
 mod bridges;
 mod closure;
+mod clusters;
 pub mod contacts;
 pub mod crossings;
 mod hairpins;

@@ -378,3 +378,14 @@ fn a_staggered_band_end_is_drawn_flat() {
 fn a_bent_crossing_is_an_outline_touching_itself() {
     assert_traces_exactly(11, "animals", "clean", 21);
 }
+
+/// Thick letters whose ends were bridged across the space to the next letter (an "F"'s bar to a
+/// "T"'s and to an "I"'s top, a "C"'s end to an "M"'s stem): the word's pieces fall into letters
+/// parted by spaces wider than its pen lifts, and a long bridge between two letters is taken back
+/// (stop 69, `ink_clusters`).
+#[test]
+fn a_long_bridge_between_two_clusters_of_ink_is_no_pen_lift() {
+    assert_traces_exactly(5, "letters", "thick", 2);
+    assert_traces_exactly(8, "letters", "clean", 0);
+    assert_traces_exactly(11, "letters", "thick", 6);
+}
