@@ -1396,18 +1396,12 @@ impl<'a> Matching<'a> {
         // joins each curve's strokes, so that a pair of bridges is judged on its own curves.
         let curves_of = |result: &[&'a Candidate]| {
             let mut sets = UnionFind::new(self.vertices.of_stroke.len());
-            let join = |sets: &mut UnionFind, a: usize, b: usize| {
-                let (a, b) = (sets.find(a as u32), sets.find(b as u32));
-                if a != b {
-                    sets.attach(b, a);
-                }
-            };
             for &(a, b) in &meeting {
-                join(&mut sets, a, b);
+                sets.union(b as u32, a as u32);
             }
             for m in result {
                 let (a, b) = self.strokes_joined(m);
-                join(&mut sets, a, b);
+                sets.union(b as u32, a as u32);
             }
             let mut links: FastHashMap<u32, Vec<(usize, usize, Option<usize>)>> =
                 FastHashMap::default();

@@ -67,10 +67,7 @@ pub(super) fn ink_clusters(
     let mut pieces = UnionFind::new(count);
     for line in &vertices.of_stroke {
         for pair in line.windows(2) {
-            let (a, b) = (pieces.find(pair[0]), pieces.find(pair[1]));
-            if a != b {
-                pieces.attach(a, b);
-            }
+            pieces.union(pair[0], pair[1]);
         }
     }
     // Every vertex by position; each end's nearest vertex of each other piece within reach.
@@ -115,9 +112,7 @@ pub(super) fn ink_clusters(
     let mut joined = pieces.clone();
     let mut tree: Vec<(f64, u32, u32)> = Vec::new();
     for &(gap, a, b) in &gaps {
-        let (ra, rb) = (joined.find(a), joined.find(b));
-        if ra != rb {
-            joined.attach(ra, rb);
+        if joined.union(a, b) {
             tree.push((gap, a, b));
         }
     }
@@ -125,10 +120,7 @@ pub(super) fn ink_clusters(
     let mut clusters = pieces;
     for &(gap, a, b) in &tree {
         if gap < space {
-            let (ra, rb) = (clusters.find(a), clusters.find(b));
-            if ra != rb {
-                clusters.attach(ra, rb);
-            }
+            clusters.union(a, b);
         }
     }
     let cluster: Vec<u32> = (0..count as u32).map(|v| clusters.find(v)).collect();

@@ -60,6 +60,16 @@ impl UnionFind {
         debug_assert!(self.is_root(child) && self.is_root(root) && child != root);
         self.parent[child as usize] = root;
     }
+
+    /// Joins the sets of `a` and `b`, the set of `a` going under the root of `b`'s; returns
+    /// whether they were apart. For callers that keep no data at the roots.
+    pub fn union(&mut self, a: u32, b: u32) -> bool {
+        let (a, b) = (self.find(a), self.find(b));
+        if a != b {
+            self.attach(a, b);
+        }
+        a != b
+    }
 }
 
 #[cfg(test)]
@@ -79,6 +89,16 @@ mod tests {
         assert!(sets.is_root(1) && !sets.is_root(3) && !sets.is_root(4));
         assert_eq!(sets.push(), Some(5));
         assert_eq!(sets.find(5), 5);
+    }
+
+    #[test]
+    fn union_puts_the_first_set_under_the_second_s_root_once() {
+        let mut sets = UnionFind::new(4);
+        assert!(sets.union(0, 1));
+        assert!(sets.union(2, 0), "2 joins 0's set, whose root is 1");
+        assert_eq!(sets.find(2), 1);
+        assert!(!sets.union(0, 2), "already one set");
+        assert_eq!(sets.find(3), 3);
     }
 
     #[test]

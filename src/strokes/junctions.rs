@@ -97,12 +97,10 @@ impl SkeletonGraph {
             chosen.push((i, j));
         }
         if ends.len() == 4 {
-            if let Some(outline) =
-                self.outline_instead_of_turn_back(&ends, &chosen, direction_scale)
-            {
-                chosen = outline;
-            } else if let Some(outline) =
-                self.outline_instead_of_bent_crossing(&ends, &chosen, direction_scale)
+            let directions = self.leaving_directions(&ends, direction_scale);
+            if let Some(outline) = self
+                .outline_instead_of_turn_back(&ends, &directions, &chosen)
+                .or_else(|| self.outline_instead_of_bent_crossing(&ends, &directions, &chosen))
             {
                 chosen = outline;
             }
@@ -118,15 +116,15 @@ impl SkeletonGraph {
     /// leaving the junction and coming back to it (its sides merged into a U at a pen lift
     /// further on), whose two ends leave side by side (measured on the benchmark: no drawing
     /// changed on either split; the right dumbbell of `dumbbell-scan-004` became one outline).
-    /// Returns that pairing, or `None` when `chosen` has no turn-back or no pairing without one
+    /// `ends` leave in `directions`. Returns that pairing, or `None` when `chosen` has no turn-back
+    /// or no pairing without one
     /// exists.
     fn outline_instead_of_turn_back(
         &self,
         ends: &[BranchEnd],
+        directions: &[kurbo::Vec2],
         chosen: &[(usize, usize)],
-        direction_scale: f64,
     ) -> Option<Vec<(usize, usize)>> {
-        let directions = self.leaving_directions(ends, direction_scale);
         let turns_back = |i: usize, j: usize| directions[i].dot(directions[j]) > TURN_BACK_COSINE;
         // A branch that leaves the junction and comes back to it is never paired with itself;
         // left over, its two ends are attached, which seals it as surely as a turn-back pair.
@@ -137,7 +135,7 @@ impl SkeletonGraph {
         if !loop_turns_back && !chosen.iter().any(|&(i, j)| turns_back(i, j)) {
             return None;
         }
-        let pairs = self.pairs_without_crossing(ends, &directions, &|i, j| !turns_back(i, j));
+        let pairs = self.pairs_without_crossing(ends, directions, &|i, j| !turns_back(i, j));
         (pairs.len() * 2 == ends.len()).then_some(pairs)
     }
 
@@ -158,14 +156,13 @@ impl SkeletonGraph {
     fn outline_instead_of_bent_crossing(
         &self,
         ends: &[BranchEnd],
+        directions: &[kurbo::Vec2],
         chosen: &[(usize, usize)],
-        direction_scale: f64,
     ) -> Option<Vec<(usize, usize)>> {
-        let directions = self.leaving_directions(ends, direction_scale);
-        if !is_bent_crossing(&directions, chosen) {
+        if !is_bent_crossing(directions, chosen) {
             return None;
         }
-        let pairs = self.pairs_without_crossing(ends, &directions, &|_, _| true);
+        let pairs = self.pairs_without_crossing(ends, directions, &|_, _| true);
         (pairs.len() * 2 == ends.len()).then_some(pairs)
     }
 
