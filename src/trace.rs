@@ -23,7 +23,7 @@ use crate::crawl::retraced::cut_back_retraced_sides;
 use crate::crawl::slivers::open_slivers;
 use crate::crawl::spikes::{
     close_curves_ending_at_a_protrusion_tip, fold_collapsed_necks, fold_collapsed_spikes,
-    join_free_ends_to_spike_tips,
+    join_curves_at_a_protrusion_tip, join_free_ends_to_spike_tips,
 };
 use crate::crawl::strokes::{connect_measured, Connected, Method};
 use crate::crawl::tips::restore_tips;
@@ -222,7 +222,8 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
         open_slivers(&mut curves, stroke_width);
         // The stages since the spikes were first folded can leave an outline that ends at a
         // protrusion's tip, and, once it is closed, collapsed spikes hanging off it.
-        if close_curves_ending_at_a_protrusion_tip(&mut curves, stroke_width) {
+        let joined = join_curves_at_a_protrusion_tip(&mut curves, &raster.mask, stroke_width);
+        if close_curves_ending_at_a_protrusion_tip(&mut curves, stroke_width) || joined {
             fold_collapsed_spikes(&mut curves, &raster.mask, stroke_width);
         }
         close_outline_gaps_across_ink(&mut curves, &raster.mask, stroke_width, typical_gap);

@@ -389,3 +389,22 @@ fn a_long_bridge_between_two_clusters_of_ink_is_no_pen_lift() {
     assert_traces_exactly(8, "letters", "clean", 0);
     assert_traces_exactly(11, "letters", "thick", 6);
 }
+
+/// A thin star's narrow tip whose two sides merged, cut across by a pen lift: one side's curve
+/// goes out to the tip, the other's ends on it where the sides merge, and the outline came out
+/// in two pieces (stop 70, `join_curves_at_a_protrusion_tip`).
+#[test]
+fn two_pieces_of_an_outline_meeting_on_a_collapsed_tip_are_joined_out_and_back() {
+    assert_traces_exactly(11, "stars", "thin", 23);
+}
+
+/// Gaps whose two ends read straight into a round bend (a thick blob's closing gap, a thick
+/// wave's trough, a thin zigzag word's turn): drawn halfway between the lines' meeting point
+/// and the arc tangent to both ends' ways, not at the meeting point outside the curve (stop 70,
+/// `STRAIGHT_ENDS_ROUNDING_SHARE` in the bridges).
+#[test]
+fn a_gap_between_straight_ends_is_drawn_between_a_corner_and_a_bend() {
+    assert_traces_exactly(1, "closing", "thick", 5);
+    assert_traces_exactly(8, "spirals-waves", "thick", 0);
+    assert_traces_exactly(11, "dots", "thin", 19);
+}

@@ -11,18 +11,7 @@ use crawltrace::{to_svg, trace, TraceOptions};
 
 /// Samples that are known to fail today, with the reason. The test fails when one of them starts
 /// to pass too, so that this list and the table in `docs/results.md` stay true.
-const KNOWN_FAILURES: &[(&str, &str)] = &[
-    (
-        "cat-fork-clean.png",
-        "the cat is exact (since stop 54); two of the fork's four tines (the second and the \
-         fourth), cut across by pen lifts, are not read as double strands traced out and back: \
-         the fork's outline stays open at their tops, in two pieces",
-    ),
-    (
-        "spiral-waves-thin.png",
-        "a wave's peak strays 3.2 px from the truth with a 1.9 px pen; the tolerance is 2.9 px",
-    ),
-];
+const KNOWN_FAILURES: &[(&str, &str)] = &[];
 
 fn traced_svg(image: &Path) -> String {
     let bytes = std::fs::read(image).unwrap();
