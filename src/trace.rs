@@ -15,7 +15,7 @@ use crate::crawl::contacts::{
     join_loops_to_open_curves, join_touching_loops, splice_loops_into_bridges,
 };
 use crate::crawl::crossings::{go_on_through_corners, pair_arms_straightest_first};
-use crate::crawl::hooks::{trim_hooked_ends, unhook_ends_beside_lines};
+use crate::crawl::hooks::trim_and_unhook_ends;
 use crate::crawl::legs::splice_leftover_legs;
 use crate::crawl::necks::thread_ropes_up_merged_necks;
 use crate::crawl::outline_gaps::{close_outline_gaps, close_outline_gaps_across_ink};
@@ -248,8 +248,7 @@ pub fn trace(image: &DynamicImage, options: &TraceOptions) -> Result<Traced, Tra
         splice_leftover_legs(&mut curves, stroke_width);
         restore_tips(&mut curves, &raster.mask, stroke_width);
         untwist_curves(&mut curves, stroke_width);
-        trim_hooked_ends(&mut curves, stroke_width);
-        unhook_ends_beside_lines(&mut curves, stroke_width);
+        trim_and_unhook_ends(&mut curves, stroke_width);
         thread_ropes_up_merged_necks(&mut curves, stroke_width);
     }
     watch.lap(&mut report, "reconstruct");
@@ -366,7 +365,7 @@ fn raster_stages(
     report.cleaned = clean(&mut mask, stroke_width);
     report.stroke_width = stroke_width;
     watch.lap(report, "clean");
-    if mask.count_ink() == 0 {
+    if !mask.has_ink() {
         return Err(TraceError::NoInk);
     }
     let skeleton = thin(&mask);

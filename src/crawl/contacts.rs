@@ -707,7 +707,7 @@ fn bridge_runs(curve: &Polyline, mask: &Bitmap) -> Vec<std::ops::Range<usize>> {
 
 /// The indices of `points`, by position, in cells `reach` wide (at least a pixel).
 fn points_by_position(points: &[Point], reach: f64) -> PointGrid<usize> {
-    let mut grid = PointGrid::new(reach.max(1.0));
+    let mut grid = PointGrid::with_capacity(reach.max(1.0), points.len(), points.len() / 2);
     for (k, &p) in points.iter().enumerate() {
         grid.insert(p, k);
     }
@@ -988,7 +988,8 @@ pub fn drop_covered_open_curves(curves: &mut Vec<Polyline>, stroke_width: f64) {
         .iter()
         .map(|curve| curve.resample(ARC_STEP_PX).points)
         .collect();
-    let mut near = PointGrid::new(stub_cover.max(1.0));
+    let count: usize = samples.iter().map(Vec::len).sum();
+    let mut near = PointGrid::with_capacity(stub_cover.max(1.0), count, count / 2);
     for (c, points) in samples.iter().enumerate() {
         for &p in points {
             near.insert(p, (c, p));

@@ -43,6 +43,15 @@ const MEET_REACH_IN_PEN_WIDTHS: f64 = 2.0;
 /// Step (pixels) at which a curve is walked along the other line.
 const WALK_STEP_PX: f64 = 0.5;
 
+/// [`trim_hooked_ends`], then [`unhook_ends_beside_lines`], as the trace runs them. The second
+/// reads the first's grid of segments again where the first cut no end back (the curves then
+/// the same), instead of building the same grid anew: about 6 M instructions on a 12-megapixel
+/// page (docs/performance.md, stop 70).
+pub fn trim_and_unhook_ends(curves: &mut [Polyline], stroke_width: f64) {
+    let grid = trim_hooked_ends(curves, stroke_width, None);
+    unhook_ends_beside_lines(curves, stroke_width, grid);
+}
+
 /// DECISION: (stop 62) an open curve whose end lies on another curve's line
 /// ([`END_ON_LINE_IN_PEN_WIDTHS`]) and whose last stretch runs along that line for
 /// [`MIN_HOOK_IN_PEN_WIDTHS`] to [`MAX_HOOK_IN_PEN_WIDTHS`] (within [`ON_LINE_IN_PEN_WIDTHS`])
@@ -64,26 +73,39 @@ const WALK_STEP_PX: f64 = 0.5;
 /// the bridges instead (where its line crosses the line going through) gained four on seed 11
 /// but lost a thin dumbbell's neck and a meander's parting legs, whose hairpins look the same
 /// there and are joined by later stages.
-pub fn trim_hooked_ends(curves: &mut [Polyline], stroke_width: f64) {
-    cut_back_hooked_ends(curves, stroke_width, |points, curves, _own, other, grid| {
-        hook(points, curves, other, grid, stroke_width)
-    });
+///
+/// `grid` and the result as [`cut_back_hooked_ends`]'s.
+fn trim_hooked_ends(
+    curves: &mut [Polyline],
+    stroke_width: f64,
+    grid: Option<SegmentGrid>,
+) -> Option<SegmentGrid> {
+    cut_back_hooked_ends(
+        curves,
+        stroke_width,
+        grid,
+        |points, curves, _own, other, grid| hook(points, curves, other, grid, stroke_width),
+    )
 }
 
 /// The driver both hook stages share: every end of an open curve that lies on another curve's
 /// line ([`END_ON_LINE_IN_PEN_WIDTHS`]) is read by `find` from a copy of its curve starting at
 /// that end (with the curve's index and the nearest other curve's), and the ends it finds
 /// hooked are cut back only after all were read, so that no cut changes what another end reads.
+///
+/// `grid` is the curves' grid of segments within [`END_ON_LINE_IN_PEN_WIDTHS`] if the caller has
+/// it (built here if not); it is handed back when no end was cut, the curves left as they were.
 fn cut_back_hooked_ends(
     curves: &mut [Polyline],
     stroke_width: f64,
+    grid: Option<SegmentGrid>,
     find: impl Fn(&[Point], &[Polyline], usize, usize, &SegmentGrid) -> Option<(usize, Point)>,
-) {
+) -> Option<SegmentGrid> {
     if stroke_width <= 0.0 || curves.len() < 2 {
-        return;
+        return None;
     }
     let on = END_ON_LINE_IN_PEN_WIDTHS * stroke_width;
-    let grid = SegmentGrid::new(curves, on);
+    let grid = grid.unwrap_or_else(|| SegmentGrid::new(curves, on));
     let mut trims: Vec<(usize, bool, usize, Point)> = Vec::new();
     for (i, curve) in curves.iter().enumerate() {
         if curve.closed || curve.points.len() < 2 {
@@ -107,9 +129,13 @@ fn cut_back_hooked_ends(
             }
         }
     }
+    if trims.is_empty() {
+        return Some(grid);
+    }
     for (i, from_last, keep_from, new_end) in trims {
         cut_end_back(&mut curves[i], from_last, keep_from, new_end);
     }
+    None
 }
 
 /// Cuts the end of `curve` (its last point's end where `from_last`) back to `new_end`: the points
@@ -282,11 +308,18 @@ const BESIDE_MAX_DEGREES: f64 = 25.0;
 /// seed 5 +1 (`parallel-scan-003`), seeds 1, 3, 6, 7, 8 unchanged, nothing lost on development;
 /// validation seed 2 +1, seed 12 +4; held-out seed 4 −1 (not looked at). At 0.5 pen widths off:
 /// development +3 (not `-022`), validation +1 and +3, seed 4 unchanged.
-pub fn unhook_ends_beside_lines(curves: &mut [Polyline], stroke_width: f64) {
+///
+/// `grid` as [`cut_back_hooked_ends`]'s.
+fn unhook_ends_beside_lines(curves: &mut [Polyline], stroke_width: f64, grid: Option<SegmentGrid>) {
     let on = END_ON_LINE_IN_PEN_WIDTHS * stroke_width;
-    cut_back_hooked_ends(curves, stroke_width, |points, curves, own, _other, grid| {
-        hook_across(points, curves, own, grid, on, stroke_width)
-    });
+    cut_back_hooked_ends(
+        curves,
+        stroke_width,
+        grid,
+        |points, curves, own, _other, grid| {
+            hook_across(points, curves, own, grid, on, stroke_width)
+        },
+    );
 }
 
 /// For the curve `points` from one end: the index from which its points are kept and its new
@@ -378,7 +411,7 @@ mod tests {
             Polyline::new(upper, false),
             Polyline::new(lower.clone(), false),
         ];
-        unhook_ends_beside_lines(&mut curves, pen);
+        unhook_ends_beside_lines(&mut curves, pen, None);
         // It ends where it leaves its own line, kept within the hook's reach of it, short of
         // the lower line's end.
         let end = curves[0].points[0];
@@ -410,7 +443,33 @@ mod tests {
             Polyline::new(turning.clone(), false),
             Polyline::new(far, false),
         ];
-        unhook_ends_beside_lines(&mut curves, pen);
+        unhook_ends_beside_lines(&mut curves, pen, None);
         assert_eq!(curves[0].points, turning);
+    }
+
+    #[test]
+    fn both_hook_stages_together_cut_as_each_with_its_own_grid() {
+        let pen = 2.0;
+        let mut upper = vec![
+            Point::new(-2.0, 3.5),
+            Point::new(0.0, 2.5),
+            Point::new(1.5, 1.0),
+        ];
+        upper.extend(line(0.0, 3.0));
+        let curves = vec![
+            Polyline::new(upper, false),
+            Polyline::new(line(3.5, -2.0), false),
+            Polyline::new(line(40.0, 10.0), false),
+        ];
+        let mut apart = curves.clone();
+        let kept = trim_hooked_ends(&mut apart, pen, None);
+        // No end hooks along a line: the first stage cuts nothing and hands its grid on.
+        assert!(kept.is_some());
+        assert_eq!(apart, curves);
+        unhook_ends_beside_lines(&mut apart, pen, None);
+        assert_ne!(apart, curves);
+        let mut together = curves;
+        trim_and_unhook_ends(&mut together, pen);
+        assert_eq!(together, apart);
     }
 }

@@ -767,7 +767,18 @@ pub(super) struct SegmentGrid {
 impl SegmentGrid {
     pub(super) fn new(curves: &[Polyline], reach: f64) -> Self {
         let step = reach.max(1.0);
-        let mut grid = PointGrid::new(2.0 * step);
+        // Each segment goes in at least one cell, a few in two; cells hold a few each.
+        let segments: usize = curves
+            .iter()
+            .map(|c| {
+                if c.closed {
+                    c.points.len()
+                } else {
+                    c.points.len().saturating_sub(1)
+                }
+            })
+            .sum();
+        let mut grid = PointGrid::with_capacity(2.0 * step, segments + segments / 8, segments / 2);
         for (i, curve) in curves.iter().enumerate() {
             let n = curve.points.len();
             let count = if curve.closed { n } else { n.saturating_sub(1) };
@@ -781,7 +792,7 @@ impl SegmentGrid {
                     let p = a.lerp(b, k as f64 / pieces as f64);
                     let cell = grid.cell_of(p);
                     if last_cell != Some(cell) {
-                        grid.insert(p, (i, s));
+                        grid.insert_in_cell(cell, (i, s));
                         last_cell = Some(cell);
                     }
                 }

@@ -52,6 +52,9 @@ const OUTLIER_COLOUR: &str = "#d33";
 
 /// Formats a number with at most two decimals, no trailing zeros and no `-0`.
 pub fn format_number(value: f64) -> String {
+    if let Some(text) = format_hundredths(value) {
+        return text;
+    }
     let mut text = format!("{value:.DECIMALS$}");
     if text.contains('.') {
         let trimmed = text.trim_end_matches('0').trim_end_matches('.').len();
@@ -61,6 +64,50 @@ pub fn format_number(value: f64) -> String {
         text = "0".to_string();
     }
     text
+}
+
+/// Largest magnitude (in hundredths) [`format_hundredths`] formats: below it the product
+/// `value × 100` is within 1.2e-7 of the exact one.
+const HUNDREDTHS_LIMIT: f64 = 1e9;
+
+/// How near (in hundredths) a half the product may come for [`format_hundredths`] to leave the
+/// number to the exact formatting: far above the product's own rounding error.
+const HALF_MARGIN: f64 = 1e-6;
+
+/// [`format_number`]'s text, the same byte for byte, from the value rounded to hundredths as an
+/// integer, or `None` where that might differ from the exact decimal rounding of `{:.2}`: a
+/// product that lies within [`HALF_MARGIN`] of a half, a value too large or not finite. The
+/// formatter's exact rounding cost about 1400 instructions a number (docs/performance.md, stop 70).
+fn format_hundredths(value: f64) -> Option<String> {
+    debug_assert_eq!(DECIMALS, 2);
+    let scaled = value.abs() * 100.0;
+    if scaled.is_nan() || scaled >= HUNDREDTHS_LIMIT {
+        return None;
+    }
+    let whole = scaled as u64; // exact: below 2^53, truncated towards zero
+    let fraction = scaled - whole as f64;
+    if (fraction - 0.5).abs() < HALF_MARGIN {
+        return None;
+    }
+    let units = whole + u64::from(fraction > 0.5);
+    let mut text = String::with_capacity(16);
+    if units == 0 {
+        text.push('0');
+        return Some(text);
+    }
+    if value < 0.0 {
+        text.push('-');
+    }
+    let _ = write!(text, "{}", units / 100);
+    let cents = units % 100;
+    if cents != 0 {
+        text.push('.');
+        text.push(char::from(b'0' + (cents / 10) as u8));
+        if cents % 10 != 0 {
+            text.push(char::from(b'0' + (cents % 10) as u8));
+        }
+    }
+    Some(text)
 }
 
 /// The `d` attribute of a path.
@@ -259,6 +306,69 @@ mod tests {
         assert_eq!(format_number(-0.001), "0");
         assert_eq!(format_number(-2.10), "-2.1");
         assert_eq!(format_number(100.0), "100");
+    }
+
+    /// [`format_number`] as it was before [`format_hundredths`]: the formatter's exact rounding.
+    fn exactly_formatted(value: f64) -> String {
+        let mut text = format!("{value:.DECIMALS$}");
+        if text.contains('.') {
+            let trimmed = text.trim_end_matches('0').trim_end_matches('.').len();
+            text.truncate(trimmed);
+        }
+        if text == "-0" {
+            text = "0".to_string();
+        }
+        text
+    }
+
+    #[test]
+    fn hundredths_format_every_number_as_the_exact_rounding_does() {
+        let mut values = vec![
+            0.0,
+            -0.0,
+            0.005,
+            0.015,
+            0.125,
+            -0.125,
+            1.005,
+            2.675,
+            0.004_999,
+            -0.004_999,
+            0.5,
+            -0.5,
+            9.995,
+            99.999_999,
+            1e7 - 0.005,
+            1e7,
+            1.5e7,
+            1e300,
+            f64::NAN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::MIN_POSITIVE,
+            4000.0 / 3.0,
+            -2_999.999_5,
+        ];
+        // Every thousandth up to ±5000 and an irregular spread of values up to ±50000.
+        values.extend(
+            (-5_000_000..=5_000_000)
+                .step_by(7)
+                .map(|k| f64::from(k) / 1000.0),
+        );
+        let mut state = 0x2545_f491_4f6c_dd1d_u64;
+        for _ in 0..200_000 {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            values.push((state >> 11) as f64 / (1u64 << 53) as f64 * 1e5 - 5e4);
+        }
+        for value in values {
+            assert_eq!(format_number(value), exactly_formatted(value), "{value:e}");
+        }
+        // Near a half it leaves the number to the formatter; elsewhere it answers.
+        assert_eq!(format_hundredths(0.125), None);
+        assert_eq!(format_hundredths(-12.345_6).as_deref(), Some("-12.35"));
+        assert_eq!(format_hundredths(3.1), Some("3.1".to_string()));
     }
 
     #[test]
