@@ -395,17 +395,24 @@ mod tests {
         points
     }
 
+    /// A line along y = 0 from x = 0 whose skeleton curls down from (1.5, 1) to (-2, 3.5): an
+    /// end hooked over the touching caps of a line beside it.
+    fn hooked_line() -> Vec<Point> {
+        let mut hooked = vec![
+            Point::new(-2.0, 3.5),
+            Point::new(0.0, 2.5),
+            Point::new(1.5, 1.0),
+        ];
+        hooked.extend(line(0.0, 3.0));
+        hooked
+    }
+
     #[test]
     fn an_end_curled_over_touching_caps_to_the_line_beside_ends_on_its_own_line() {
         let pen = 2.0;
         // The upper line's ink ends at x = 3; its skeleton curls down over the touching caps to
         // the lower line's end, 3.5 px below and staggered 5 px farther on.
-        let mut upper = vec![
-            Point::new(-2.0, 3.5),
-            Point::new(0.0, 2.5),
-            Point::new(1.5, 1.0),
-        ];
-        upper.extend(line(0.0, 3.0));
+        let upper = hooked_line();
         let lower = line(3.5, -2.0);
         let mut curves = vec![
             Polyline::new(upper, false),
@@ -432,12 +439,7 @@ mod tests {
     #[test]
     fn an_end_turning_away_from_any_line_beside_is_kept() {
         let pen = 2.0;
-        let mut turning = vec![
-            Point::new(-2.0, 3.5),
-            Point::new(0.0, 2.5),
-            Point::new(1.5, 1.0),
-        ];
-        turning.extend(line(0.0, 3.0));
+        let turning = hooked_line();
         let far = line(12.0, -2.0);
         let mut curves = vec![
             Polyline::new(turning.clone(), false),
@@ -450,12 +452,7 @@ mod tests {
     #[test]
     fn both_hook_stages_together_cut_as_each_with_its_own_grid() {
         let pen = 2.0;
-        let mut upper = vec![
-            Point::new(-2.0, 3.5),
-            Point::new(0.0, 2.5),
-            Point::new(1.5, 1.0),
-        ];
-        upper.extend(line(0.0, 3.0));
+        let upper = hooked_line();
         let curves = vec![
             Polyline::new(upper, false),
             Polyline::new(line(3.5, -2.0), false),

@@ -52,9 +52,12 @@ const OUTLIER_COLOUR: &str = "#d33";
 
 /// Formats a number with at most two decimals, no trailing zeros and no `-0`.
 pub fn format_number(value: f64) -> String {
-    if let Some(text) = format_hundredths(value) {
-        return text;
-    }
+    format_hundredths(value).unwrap_or_else(|| format_exactly(value))
+}
+
+/// [`format_number`] by the formatter's exact decimal rounding, for the numbers
+/// [`format_hundredths`] leaves to it.
+fn format_exactly(value: f64) -> String {
     let mut text = format!("{value:.DECIMALS$}");
     if text.contains('.') {
         let trimmed = text.trim_end_matches('0').trim_end_matches('.').len();
@@ -308,19 +311,6 @@ mod tests {
         assert_eq!(format_number(100.0), "100");
     }
 
-    /// [`format_number`] as it was before [`format_hundredths`]: the formatter's exact rounding.
-    fn exactly_formatted(value: f64) -> String {
-        let mut text = format!("{value:.DECIMALS$}");
-        if text.contains('.') {
-            let trimmed = text.trim_end_matches('0').trim_end_matches('.').len();
-            text.truncate(trimmed);
-        }
-        if text == "-0" {
-            text = "0".to_string();
-        }
-        text
-    }
-
     #[test]
     fn hundredths_format_every_number_as_the_exact_rounding_does() {
         let mut values = vec![
@@ -363,7 +353,7 @@ mod tests {
             values.push((state >> 11) as f64 / (1u64 << 53) as f64 * 1e5 - 5e4);
         }
         for value in values {
-            assert_eq!(format_number(value), exactly_formatted(value), "{value:e}");
+            assert_eq!(format_number(value), format_exactly(value), "{value:e}");
         }
         // Near a half it leaves the number to the formatter; elsewhere it answers.
         assert_eq!(format_hundredths(0.125), None);
