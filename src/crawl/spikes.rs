@@ -371,7 +371,8 @@ fn protrusion_join(
         if points.len() < 4 {
             continue;
         }
-        let reach = bounding_box(points).inflate(on_itself, on_itself);
+        let own_box = bounding_box(points);
+        let reach = own_box.inflate(on_itself, on_itself);
         // The curve with its tip last, one way round and then the other.
         for tip_last in [true, false] {
             let mut a = points.clone();
@@ -384,6 +385,9 @@ fn protrusion_join(
             let total = along[n - 1];
             for &j in open.iter().filter(|&&j| j != i) {
                 let other = &curves[j].points;
+                let size = own_box.union(bounding_box(other));
+                let max_protrusion =
+                    PROTRUSION_MAX_SHARE_OF_OUTLINE * size.width().hypot(size.height());
                 for end_last in [true, false] {
                     let end = if end_last {
                         other[other.len() - 1]
@@ -395,21 +399,13 @@ fn protrusion_join(
                     }
                     // Where the end stops on the curve: its nearest point farther than the reach
                     // from the tip along it.
-                    let Some((distance, base)) = (0..n - 1)
-                        .filter(|&k| total - along[k] > on_itself)
-                        .map(|k| (a[k].distance(end), k))
-                        .min_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)))
+                    let away = (0..n - 1).filter(|&k| total - along[k] > on_itself);
+                    let Some(base) =
+                        base_where_stopping(&a, &along, end, away, on_itself, max_protrusion)
                     else {
                         continue;
                     };
-                    let size = bounding_box(points).union(bounding_box(other));
-                    let max_protrusion =
-                        PROTRUSION_MAX_SHARE_OF_OUTLINE * size.width().hypot(size.height());
-                    if distance > on_itself
-                        || total - along[base] > max_protrusion
-                        || tip.distance(a[base]) <= on_itself
-                        || !double(&a[base..])
-                    {
+                    if !double(&a[base..]) {
                         continue;
                     }
                     // The other curve up to its end, out from the base to the tip, and back
@@ -449,16 +445,29 @@ fn closed_back_along_protrusion(
 /// most `on_itself` from it in a straight line), where the stretch from there to the tip is no
 /// longer than `max_protrusion` and its tip farther out than `on_itself`.
 fn protrusion_base(points: &[Point], on_itself: f64, max_protrusion: f64) -> Option<usize> {
-    let n = points.len();
-    let start = points[0];
     let along = distances_along(points);
-    let total = along[n - 1];
     // Where the first point stops on the curve: its nearest point away from it along the curve.
-    let (distance, base) = (1..n - 1)
-        .filter(|&k| along[k] > on_itself)
-        .map(|k| (points[k].distance(start), k))
+    let away = (1..points.len() - 1).filter(|&k| along[k] > on_itself);
+    base_where_stopping(points, &along, points[0], away, on_itself, max_protrusion)
+}
+
+/// Where a point `stop` lies on the open curve through `points` (a protrusion's tip last,
+/// `along` its distances along the curve) at the protrusion's base: the index among `candidates`
+/// of the point nearest `stop`, where that is at most `on_itself` from it, the stretch from there
+/// to the tip no longer than `max_protrusion` and the tip farther out than `on_itself`.
+fn base_where_stopping(
+    points: &[Point],
+    along: &[f64],
+    stop: Point,
+    candidates: impl Iterator<Item = usize>,
+    on_itself: f64,
+    max_protrusion: f64,
+) -> Option<usize> {
+    let n = points.len();
+    let (distance, base) = candidates
+        .map(|k| (points[k].distance(stop), k))
         .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)))?;
-    let protrusion = total - along[base];
+    let protrusion = along[n - 1] - along[base];
     let tip_out = points[n - 1].distance(points[base]);
     (distance <= on_itself && protrusion <= max_protrusion && tip_out > on_itself).then_some(base)
 }
