@@ -269,6 +269,7 @@ pub(super) fn match_gap_bridges(
     ends: &[BridgeableEnd],
     spacing: f64,
     stroke_width: f64,
+    given_gap: Option<f64>,
 ) -> GapBridges {
     // No bridge can be longer than the widest loop-closing gap allowed with the largest typical
     // gap, rim to rim, plus the pen width thinning took off the two ends.
@@ -330,15 +331,21 @@ pub(super) fn match_gap_bridges(
         let reopened = matching.repair_pairings(augmented, &rearrangeable);
         matching.uncross(reopened, &rearrangeable, reach)
     };
-    let rough = rough_typical_gap(&free_gaps(&matching.run(None)), spacing);
-    let settled = settled_under(rough);
-    let typical_gap = typical_gap(&free_gaps(&settled), spacing, stroke_width);
     // The matching is a function of the typical gap alone: where the rough one was right, the
-    // settled matching is the matching.
-    let matched = if typical_gap == rough {
-        settled
-    } else {
-        settled_under(typical_gap)
+    // settled matching is the matching. A part of a drawing traced again on its own is matched
+    // against the whole drawing's typical gap (`given_gap`), not one measured on the part.
+    let (typical_gap, matched) = match given_gap {
+        Some(typical_gap) => (typical_gap, settled_under(typical_gap)),
+        None => {
+            let rough = rough_typical_gap(&free_gaps(&matching.run(None)), spacing);
+            let settled = settled_under(rough);
+            let typical_gap = typical_gap(&free_gaps(&settled), spacing, stroke_width);
+            if typical_gap == rough {
+                (typical_gap, settled)
+            } else {
+                (typical_gap, settled_under(typical_gap))
+            }
+        }
     };
     let matched = matching.without_two_openings(matched, typical_gap);
     let matched = matching.without_facing_openings(matched, ends, typical_gap);

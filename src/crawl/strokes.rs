@@ -245,7 +245,7 @@ pub fn connect(
     spacing: f64,
     stroke_width: f64,
 ) -> Vec<Polyline> {
-    connect_measured(strokes, method, spacing, stroke_width).curves
+    connect_measured(strokes, method, spacing, stroke_width, None).curves
 }
 
 /// Curves connected from strokes ([`connect_measured`]), and the drawing's typical pen lift as
@@ -260,18 +260,21 @@ pub struct Connected {
 }
 
 /// [`connect`], also giving the typical gap the bridges were measured against, for the stages
-/// after the crawl that judge gaps on the same scale.
+/// after the crawl that judge gaps on the same scale. With `given_gap` the bridges are matched
+/// against that typical gap instead of one measured on `strokes` (a part of a drawing traced
+/// again on its own, measured as the whole drawing was).
 pub fn connect_measured(
     strokes: &[Stroke],
     method: Method,
     spacing: f64,
     stroke_width: f64,
+    given_gap: Option<f64>,
 ) -> Connected {
     let minimum_length = minimum_curve_length(stroke_width);
     let end_extension = end_extension(stroke_width);
     let (curves, typical_gap) = match method {
         Method::Strokes => {
-            let (curves, typical_gap) = connect_strokes(strokes, spacing, stroke_width);
+            let (curves, typical_gap) = connect_strokes(strokes, spacing, stroke_width, given_gap);
             (curves, Some(typical_gap))
         }
         Method::Points => (crawl_all_samples(strokes, super::robust::reconstruct), None),
@@ -491,11 +494,13 @@ impl StrokeGraph {
 }
 
 /// The crawl on stroke edges and bridges (see the module documentation), and the drawing's
-/// typical gap the bridges were matched against.
+/// typical gap the bridges were matched against (`given_gap` where given: see
+/// [`connect_measured`]).
 pub fn connect_strokes(
     strokes: &[Stroke],
     spacing: f64,
     stroke_width: f64,
+    given_gap: Option<f64>,
 ) -> (Vec<Polyline>, f64) {
     let strokes: &[Stroke] = &open_hairpins(
         strokes,
@@ -512,7 +517,7 @@ pub fn connect_strokes(
         cuts,
         attached,
         typical_gap,
-    } = match_gap_bridges(&vertices, &ends, spacing, stroke_width);
+    } = match_gap_bridges(&vertices, &ends, spacing, stroke_width, given_gap);
     // An arm cut off an opened corner ends on the corner point, like a T-end.
     let cut: FastHashSet<(u32, u32)> = cuts
         .iter()
@@ -1035,7 +1040,7 @@ mod tests {
         string_and_arc.extend(arc(90.0, 120.0, 4).into_iter().skip(1));
         let mut rest = open(&arc(128.0, 440.0, 80));
         rest.ends[1] = StrokeEnd::Attached(Point::new(knot.0, knot.1));
-        let (curves, _) = connect_strokes(&[open(&string_and_arc), rest], 4.0, 3.0);
+        let (curves, _) = connect_strokes(&[open(&string_and_arc), rest], 4.0, 3.0, None);
         assert_eq!(curves.len(), 2, "{curves:?}");
         let balloon = curves.iter().find(|c| c.closed).expect("a closed balloon");
         assert!(
@@ -1130,7 +1135,7 @@ mod tests {
         let down = open(&line((0.0, -60.0), (0.0, -6.0)));
         let corner = open(&[(0.0, -3.0), (0.0, 0.0), (3.0, 0.0)]);
         let across = open(&line((6.0, 0.0), (60.0, 0.0)));
-        let (curves, _) = connect_strokes(&[down, corner, across], 4.0, 3.0);
+        let (curves, _) = connect_strokes(&[down, corner, across], 4.0, 3.0, None);
         assert_eq!(curves.len(), 1, "{curves:?}");
         let nearest = curves[0]
             .points
@@ -1249,7 +1254,7 @@ mod tests {
             (40.0 + 20.0 * angle.cos(), 60.0 + 20.0 * angle.sin())
         }));
         points.push((24.0, 40.0));
-        let (curves, _) = connect_strokes(&[open(&points)], 4.0, 3.0);
+        let (curves, _) = connect_strokes(&[open(&points)], 4.0, 3.0, None);
         assert_eq!(curves.len(), 1, "{curves:?}");
         assert!(!curves[0].closed, "{curves:?}");
     }

@@ -36,6 +36,19 @@ impl Bitmap {
         }
     }
 
+    /// The `width` by `height` window of this bitmap whose top left pixel is (`x0`, `y0`);
+    /// pixels past the edge are background.
+    pub(crate) fn crop(&self, x0: usize, y0: usize, width: usize, height: usize) -> Self {
+        let mut window = Self::new(width, height);
+        let columns = width.min(self.width.saturating_sub(x0));
+        for y in 0..height.min(self.height.saturating_sub(y0)) {
+            let from = (y0 + y) * self.width + x0;
+            window.pixels[y * width..y * width + columns]
+                .copy_from_slice(&self.pixels[from..from + columns]);
+        }
+        window
+    }
+
     /// Parses a grid literal: one row a line, `#` for ink, `.` for background; blank lines and
     /// surrounding white space are ignored. Panics on ragged rows (it is for tests and fixtures).
     pub fn from_grid(grid: &str) -> Self {
@@ -186,6 +199,21 @@ impl std::fmt::Debug for Bitmap {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_window_keeps_its_pixels_and_is_blank_past_the_edge() {
+        let bitmap = Bitmap::from_grid(
+            "
+            #..
+            .#.
+            ..#
+            ",
+        );
+        let window = bitmap.crop(1, 1, 3, 2);
+        assert_eq!(window.to_grid(), Bitmap::from_grid("#..\n.#.").to_grid());
+        assert_eq!(bitmap.crop(0, 0, 3, 3), bitmap);
+        assert!(!bitmap.crop(3, 3, 2, 2).has_ink());
+    }
 
     #[test]
     fn has_ink_as_the_count_says() {

@@ -12,6 +12,22 @@ use crate::geometry::Polyline;
 /// A branch end: the branch and whether it is the branch's start.
 type BranchEnd = (usize, bool);
 
+/// Pairings forced at junctions (by node index), in place of what the junction would decide:
+/// indices into the junction's branch ends, as a [`ContactChoice`] gives them.
+pub(crate) type ForcedPairings = HashMap<usize, Vec<(usize, usize)>>;
+
+/// Another way a four-way junction's branches could be paired without crossing: where an
+/// outline touches itself, which way round it goes on shows only after the gaps are bridged.
+#[derive(Clone, Debug)]
+pub(crate) struct ContactChoice {
+    /// The junction's node.
+    pub(crate) node: usize,
+    /// Where it is.
+    pub(crate) position: Point,
+    /// The other pairing, for [`ForcedPairings`].
+    pub(crate) pairs: Vec<(usize, usize)>,
+}
+
 /// What the junctions decided, for chaining the branches into strokes.
 #[derive(Default)]
 struct Pairing {
@@ -38,38 +54,99 @@ impl Pairing {
 impl SkeletonGraph {
     /// Pairs the branch ends at every node and chains paired branches into strokes: lone dots
     /// first, then open strokes, then closed ones.
-    pub(super) fn into_strokes(self, direction_scale: f64) -> Vec<Stroke> {
+    pub(super) fn into_strokes(
+        self,
+        direction_scale: f64,
+        forced: &ForcedPairings,
+    ) -> (Vec<Stroke>, Vec<ContactChoice>) {
         let mut pairing = Pairing::default();
-        for node in &self.nodes {
-            self.pair_ends_at(node, direction_scale, &mut pairing);
+        let mut choices = Vec::new();
+        for (n, node) in self.nodes.iter().enumerate() {
+            let ends = self.live_ends(node);
+            if ends.len() < 2 {
+                continue;
+            }
+            if let Some(pairs) = forced.get(&n) {
+                record_pairs(node, &ends, pairs, &mut pairing);
+                continue;
+            }
+            let chosen = self.pair_ends_at(&ends, direction_scale);
+            if let Some(alternatives) =
+                self.other_pairings_without_crossing(&ends, &chosen, direction_scale)
+            {
+                for pairs in alternatives {
+                    choices.push(ContactChoice {
+                        node: n,
+                        position: node.position,
+                        pairs,
+                    });
+                }
+            }
+            record_pairs(node, &ends, &chosen, &mut pairing);
         }
         let mut visited = vec![false; self.branches.len()];
         let mut strokes = self.lone_dots();
         self.chain_open_strokes(&pairing, &mut visited, &mut strokes);
         self.chain_closed_strokes(&pairing, &mut visited, &mut strokes);
-        strokes
+        (strokes, choices)
+    }
+
+    /// The branch ends at `node` that are still there.
+    fn live_ends(&self, node: &Node) -> Vec<BranchEnd> {
+        node.ends
+            .iter()
+            .copied()
+            .filter(|&(b, _)| !self.branches[b].removed)
+            .collect()
+    }
+
+    /// At a four-way junction, the pairings of its `ends` that pair all four without crossing
+    /// and differ from `chosen`, for the contacts to be decided after the bridges
+    /// (`crate::trace`'s `contacts_decided_after_bridges`); `None` at any other junction.
+    fn other_pairings_without_crossing(
+        &self,
+        ends: &[BranchEnd],
+        chosen: &[(usize, usize)],
+        direction_scale: f64,
+    ) -> Option<Vec<Vec<(usize, usize)>>> {
+        if ends.len() != 4 {
+            return None;
+        }
+        let directions = self.leaving_directions(ends, direction_scale);
+        let order = self.circular_order(ends, &directions);
+        let strand = |k: usize| self.branches[ends[k].0].strand_of;
+        let allowed = |i: usize, j: usize| {
+            ends[i].0 != ends[j].0 && (strand(i).is_none() || strand(i) != strand(j))
+        };
+        let others = other_non_crossing_pairings(&order, &allowed, chosen);
+        (!others.is_empty()).then_some(others)
+    }
+
+    /// The indices of `ends` (leaving in `directions`) in their circular order round the
+    /// junction, a band's left side a hair counter-clockwise of its right one.
+    fn circular_order(&self, ends: &[BranchEnd], directions: &[kurbo::Vec2]) -> Vec<usize> {
+        let angle = |k: usize| {
+            let (b, at_start) = ends[k];
+            let side = self.branches[b].side * if at_start { 1.0 } else { -1.0 };
+            // The two sides of a band leave in the same direction; the left one lies a hair
+            // counter-clockwise of the right one.
+            directions[k].y.atan2(directions[k].x) + side * SIDE_ORDER_RADIANS
+        };
+        let mut order: Vec<usize> = (0..ends.len()).collect();
+        order.sort_by(|&i, &j| angle(i).total_cmp(&angle(j)).then(i.cmp(&j)));
+        order
     }
 
     /// Greedy good continuation at one node: the straightest pair of branch ends goes through
     /// first, then the next straightest of the ends left; an end left over is attached here.
-    fn pair_ends_at(&self, node: &Node, direction_scale: f64, pairing: &mut Pairing) {
-        let ends: Vec<BranchEnd> = node
-            .ends
-            .iter()
-            .copied()
-            .filter(|&(b, _)| !self.branches[b].removed)
-            .collect();
-        if ends.len() < 2 {
-            return;
-        }
+    fn pair_ends_at(&self, ends: &[BranchEnd], direction_scale: f64) -> Vec<(usize, usize)> {
+        let ends = ends.to_vec();
         let on_outline = ends
             .iter()
             .any(|&(b, _)| self.branches[b].strand_of.is_some());
         if on_outline && ends.len() <= MAX_ENDS_FOR_EXACT_PAIRING {
             let directions = self.leaving_directions(&ends, direction_scale);
-            let pairs = self.pairs_without_crossing(&ends, &directions, &|_, _| true);
-            record_pairs(node, &ends, &pairs, pairing);
-            return;
+            return self.pairs_without_crossing(&ends, &directions, &|_, _| true);
         }
         // Going straight through means the chord between the two branches, a little away from
         // the node, continues both of them: two curves that touch side by side (their skeletons
@@ -105,7 +182,7 @@ impl SkeletonGraph {
                 chosen = outline;
             }
         }
-        record_pairs(node, &ends, &chosen, pairing);
+        chosen
     }
 
     /// DECISION: at a four-way junction, a pair whose two ends leave side by side (within 45°)
@@ -184,15 +261,7 @@ impl SkeletonGraph {
         directions: &[kurbo::Vec2],
         also_allowed: &dyn Fn(usize, usize) -> bool,
     ) -> Vec<(usize, usize)> {
-        let angle = |k: usize| {
-            let (b, at_start) = ends[k];
-            let side = self.branches[b].side * if at_start { 1.0 } else { -1.0 };
-            // The two sides of a band leave in the same direction; the left one lies a hair
-            // counter-clockwise of the right one.
-            directions[k].y.atan2(directions[k].x) + side * SIDE_ORDER_RADIANS
-        };
-        let mut order: Vec<usize> = (0..ends.len()).collect();
-        order.sort_by(|&i, &j| angle(i).total_cmp(&angle(j)).then(i.cmp(&j)));
+        let order = self.circular_order(ends, directions);
         let strand = |k: usize| self.branches[ends[k].0].strand_of;
         let allowed = |i: usize, j: usize| {
             ends[i].0 != ends[j].0
@@ -458,6 +527,30 @@ fn record_pairs(node: &Node, ends: &[BranchEnd], pairs: &[(usize, usize)], pairi
     }
 }
 
+/// The two pairings of the four items in `order` (their circular order round a junction) whose
+/// pairs do not cross, each pair `allowed`, other than `chosen` (in either order of pairs and
+/// of ends).
+fn other_non_crossing_pairings(
+    order: &[usize],
+    allowed: &dyn Fn(usize, usize) -> bool,
+    chosen: &[(usize, usize)],
+) -> Vec<Vec<(usize, usize)>> {
+    let normal = |pairs: &[(usize, usize)]| {
+        let mut pairs: Vec<(usize, usize)> =
+            pairs.iter().map(|&(i, j)| (i.min(j), i.max(j))).collect();
+        pairs.sort_unstable();
+        pairs
+    };
+    let chosen = normal(chosen);
+    let [a, b, c, d] = order[..] else {
+        return Vec::new();
+    };
+    [vec![(a, b), (c, d)], vec![(b, c), (d, a)]]
+        .into_iter()
+        .filter(|pairs| pairs.iter().all(|&(i, j)| allowed(i, j)) && normal(pairs) != chosen)
+        .collect()
+}
+
 /// The best matching of the items in `order` (their circular order around a junction) whose
 /// pairs do not cross: the most pairs, then the least total `cost`; only `allowed` pairs.
 /// Chords between points on a circle cross exactly when their intervals in the circular order
@@ -527,6 +620,26 @@ mod tests {
         let pairs = non_crossing_matching(&[0, 1, 2], &|i, j| i + j != 1, &cost);
         assert_eq!(pairs.len(), 1, "{pairs:?}");
         assert_ne!(pairs[0], (0, 1));
+    }
+
+    #[test]
+    fn a_four_way_junction_offers_its_other_pairings_without_crossing() {
+        // Four ends in circular order 2, 0, 3, 1: the pairings without crossing are (2, 0) with
+        // (3, 1), and (0, 3) with (1, 2); pairing across, (2, 3) with (0, 1), crosses.
+        let order = [2, 0, 3, 1];
+        let any = |_: usize, _: usize| true;
+        // Chosen crossing: both others are offered.
+        let others = other_non_crossing_pairings(&order, &any, &[(2, 3), (0, 1)]);
+        assert_eq!(others, vec![vec![(2, 0), (3, 1)], vec![(0, 3), (1, 2)]]);
+        // Chosen one of them (its pairs and ends in another order): only the other.
+        let others = other_non_crossing_pairings(&order, &any, &[(1, 3), (0, 2)]);
+        assert_eq!(others, vec![vec![(0, 3), (1, 2)]]);
+        // A pair that is not allowed (a band's two sides) rules its pairing out.
+        let others =
+            other_non_crossing_pairings(&order, &|i, j| i.min(j) != 0 || i.max(j) != 3, &[]);
+        assert_eq!(others, vec![vec![(2, 0), (3, 1)]]);
+        // Not four ends: nothing.
+        assert!(other_non_crossing_pairings(&[0, 1, 2], &any, &[]).is_empty());
     }
 
     #[test]

@@ -24,6 +24,7 @@ use prune::{CornerSpurs, FacingEnds};
 
 pub use dots::{split_dots, Dot};
 pub(crate) use double::ink_width_across;
+pub(crate) use junctions::{ContactChoice, ForcedPairings};
 pub(crate) use sample::MIN_LOOP_SAMPLES;
 pub use sample::{
     default_spacing, minimum_spacing, sample_strokes, simplification_tolerance, MIN_SPACING_PX,
@@ -127,6 +128,19 @@ pub fn extract_strokes_and_bands(
     mask: &Bitmap,
     stroke_width: f64,
 ) -> (Vec<Stroke>, Vec<Polyline>) {
+    let (strokes, bands, _) =
+        extract_strokes_with_choices(skeleton, mask, stroke_width, &ForcedPairings::new());
+    (strokes, bands)
+}
+
+/// [`extract_strokes_and_bands`] with the pairings in `forced` at their junctions, and every
+/// other way a four-way junction could have been paired without crossing.
+pub(crate) fn extract_strokes_with_choices(
+    skeleton: &Bitmap,
+    mask: &Bitmap,
+    stroke_width: f64,
+    forced: &ForcedPairings,
+) -> (Vec<Stroke>, Vec<Polyline>, Vec<ContactChoice>) {
     let in_pixels = |pen_widths: f64, floor: f64| (pen_widths * stroke_width).max(floor);
     let mut graph = SkeletonGraph::trace(skeleton);
     // Two strokes laid side by side enclose slivers of paper; their skeleton is a small loop (a
@@ -176,7 +190,8 @@ pub fn extract_strokes_and_bands(
         .into_iter()
         .map(|points| Polyline::new(points, false))
         .collect();
-    (graph.into_strokes(direction_scale), bands)
+    let (strokes, choices) = graph.into_strokes(direction_scale, forced);
+    (strokes, bands, choices)
 }
 
 #[cfg(test)]

@@ -408,3 +408,16 @@ fn a_gap_between_straight_ends_is_drawn_between_a_corner_and_a_bend() {
     assert_traces_exactly(8, "spirals-waves", "thick", 0);
     assert_traces_exactly(11, "dots", "thin", 19);
 }
+
+/// An animal, a thin dumbbell's neck and a thin figure-eight's waist whose four-way junction was
+/// paired, before any gap was bridged, the way that left the outline open once the gaps were
+/// crossed: the junction is paired again the other way that does not cross, and that pairing is
+/// kept because no open piece is left (stop 71, `contacts_decided_after_bridges`). The
+/// figure-eight's part is traced in a window, which must be bridged against the page's typical
+/// gap.
+#[test]
+fn a_contact_is_decided_after_the_bridges() {
+    assert_traces_exactly(11, "animals", "thin", 3);
+    assert_traces_exactly(11, "dumbbell", "thin", 2);
+    assert_traces_exactly(11, "figure-eight", "thin", 2);
+}
