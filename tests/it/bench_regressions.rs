@@ -421,3 +421,28 @@ fn a_contact_is_decided_after_the_bridges() {
     assert_traces_exactly(11, "dumbbell", "thin", 2);
     assert_traces_exactly(11, "figure-eight", "thin", 2);
 }
+
+/// A thick cloud's lobe whose side from the crest down to the notch fell in a pen lift: its
+/// curving reads none (the sparse samples make a corner of the tight lobe), but the gap goes
+/// round the stroke's own circle into the notch's cusp, so it is drawn along it, not along the
+/// chord 6 px inside the lobe (stop 70, `goes_round_own_circle`).
+#[test]
+fn a_thick_lobes_gap_into_a_notch_goes_round_the_lobes_own_circle() {
+    assert_traces_exactly(8, "objects", "thick", 3);
+}
+
+/// A thick balloon's knot, where its outline ends on the junction with the string: the closing
+/// point is read from the end's own last sample where that lies nearer to the chain than the
+/// junction's point, which sits off to the string's side (stop 71, `loop_and_tail`).
+#[test]
+fn a_balloon_attached_at_its_knot_closes_at_its_own_end() {
+    assert_traces_exactly(11, "objects", "thick", 23);
+}
+
+/// A balloon drawn as a teardrop whose first side stops a gap short of its point: the end turns
+/// more than a straight bridge into the loop, but the string leaves the loop's far side, so it
+/// is a loop and a tail (stop 71, `tail_leaves_loop`).
+#[test]
+fn a_teardrop_balloons_end_short_of_its_point_closes_the_loop() {
+    assert_traces_exactly(5, "objects", "scan", 2);
+}
