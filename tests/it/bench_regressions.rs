@@ -439,6 +439,15 @@ fn a_balloon_attached_at_its_knot_closes_at_its_own_end() {
     assert_traces_exactly(11, "objects", "thick", 23);
 }
 
+/// A thick balloon beside a cloud: the cloud's lobe needs its own circle
+/// (`goes_round_own_circle`) and the balloon's knot its end's own sample (`loop_and_tail`); with
+/// neither it was 10.9 px off at worst, the lobe alone (stop 70's prototype) still failed at the
+/// knot (stop 71).
+#[test]
+fn a_thick_lobe_and_a_balloons_knot_in_one_drawing() {
+    assert_traces_exactly(11, "objects", "thick", 13);
+}
+
 /// A balloon drawn as a teardrop whose first side stops a gap short of its point: the end turns
 /// more than a straight bridge into the loop, but the string leaves the loop's far side, so it
 /// is a loop and a tail (stop 71, `tail_leaves_loop`).
