@@ -4536,6 +4536,20 @@ mod tests {
         assert_eq!(bridges_across_spaces(&[(a, None, true)]), [false]);
     }
 
+    /// A bridge end at `at` pointing `outward`, from a straight stroke not measured: no bend,
+    /// curving or circle, nothing behind it. Each test sets the fields it is about.
+    fn plain_end(at: Point, outward: Vec2) -> BridgeEnd {
+        BridgeEnd {
+            at,
+            outward: Some(outward),
+            bend: 0.0,
+            curving: 0.0,
+            circle: 0.0,
+            behind: None,
+            straight: StraightRun::UNMEASURED,
+        }
+    }
+
     /// The ends of an 80° gap in a circle of radius 30 about the origin, the circle drawn
     /// counter-clockwise; `bends` is how much each stroke turns on its way into its end, the way
     /// the circle turns.
@@ -4553,13 +4567,8 @@ mod tests {
         let (before, along_before) = at(-half_span);
         let (after, along_after) = at(half_span);
         let end = |at: Point, outward: Vec2, bend: f64| BridgeEnd {
-            at,
-            outward: Some(outward),
             bend,
-            behind: None,
-            curving: 0.0,
-            circle: 0.0,
-            straight: StraightRun::UNMEASURED,
+            ..plain_end(at, outward)
         };
         // Leaving the stroke after the gap, the pen goes clockwise: its bend has the other sign.
         (
@@ -4848,15 +4857,7 @@ mod tests {
         // A trough in a pen lift: two straight strokes (no bend, no curving) whose ends point
         // 20° below the chord from (0, 0) to (20, 0), y down. The bridge sags below the chord,
         // by less than where their lines meet (3.6 px below its middle).
-        let end = |x: f64, way: Vec2| BridgeEnd {
-            at: Point::new(x, 0.0),
-            outward: Some(way.normalize()),
-            bend: 0.0,
-            curving: 0.0,
-            circle: 0.0,
-            behind: None,
-            straight: StraightRun::UNMEASURED,
-        };
+        let end = |x: f64, way: Vec2| plain_end(Point::new(x, 0.0), way.normalize());
         let (down_right, down_left) = (
             Vec2::new(20f64.to_radians().cos(), 20f64.to_radians().sin()),
             Vec2::new(-(20f64.to_radians().cos()), 20f64.to_radians().sin()),
@@ -5383,17 +5384,12 @@ mod tests {
         // turns. The straight bridge up the flank (9.85 px, 32° at each end) costs less than the
         // 13.15 px corner it lost to (19.73).
         let stub = |at: (f64, f64), way: (f64, f64), corner_turn: f64| BridgeEnd {
-            at: Point::new(at.0, at.1),
-            outward: Some(Vec2::new(way.0, way.1).normalize()),
-            bend: 0.0,
-            curving: 0.0,
-            circle: 0.0,
-            behind: None,
             straight: StraightRun {
                 length: 13f64.sqrt(),
                 from_corner: true,
                 corner_turn,
             },
+            ..plain_end(Point::new(at.0, at.1), Vec2::new(way.0, way.1).normalize())
         };
         let trough = stub((424.5, 73.5), (3.0, -2.0), -1.0);
         let crest = stub((428.5, 64.5), (-3.0, 2.0), -1.0);
@@ -5437,17 +5433,12 @@ mod tests {
         // meet 3.7 and 5.9 px ahead of the ends, 3.2 px below the trough. The corner is drawn
         // part of the way towards the arc tangent to both ways, within the tolerance of 2.9 px.
         let end = |at: (f64, f64), way: (f64, f64), run: f64| BridgeEnd {
-            at: Point::new(at.0, at.1),
-            outward: Some(Vec2::new(way.0, way.1).normalize()),
-            bend: 0.0,
-            curving: 0.0,
-            circle: 0.0,
-            behind: None,
             straight: StraightRun {
                 length: run,
                 from_corner: false,
                 corner_turn: 0.0,
             },
+            ..plain_end(Point::new(at.0, at.1), Vec2::new(way.0, way.1).normalize())
         };
         let left = end((506.5, 145.5), (0.7526, 0.6585), 12.4);
         let right = end((513.5, 143.5), (-0.6508, 0.7593), 9.2);
@@ -5625,22 +5616,12 @@ mod tests {
         // it, its line running into the foot's end: the corner is that end, put back half a pen
         // width further on (3 px pen), where the pen was before thinning ate the end.
         let foot = BridgeEnd {
-            at: Point::new(0.0, 0.0),
-            outward: Some(Vec2::new(1.0, 0.0)),
-            bend: 0.0,
-            curving: 0.0,
-            circle: 0.0,
             behind: Some(Point::new(-3.0, 0.0)),
-            straight: StraightRun::UNMEASURED,
+            ..plain_end(Point::new(0.0, 0.0), Vec2::new(1.0, 0.0))
         };
         let stem = BridgeEnd {
-            at: Point::new(0.5, 10.0),
-            outward: Some(Vec2::new(0.0, -1.0)),
-            bend: 0.0,
-            curving: 0.0,
-            circle: 0.0,
             behind: Some(Point::new(0.5, 13.0)),
-            straight: StraightRun::UNMEASURED,
+            ..plain_end(Point::new(0.5, 10.0), Vec2::new(0.0, -1.0))
         };
         let corner = bridge_shape(|| false, foot, stem, 0.0, 3.0)
             .and_then(|shape| shape.corner)
@@ -5655,22 +5636,13 @@ mod tests {
         // direction its line misses the stem's ink; along the stroke it runs into it.
         let bend: f64 = 0.27;
         let foot = BridgeEnd {
-            at: Point::new(0.0, 0.0),
-            outward: Some(Vec2::new(bend.cos(), bend.sin())),
             bend,
-            curving: 0.0,
-            circle: 0.0,
             behind: Some(Point::new(-1.5, 0.0)),
-            straight: StraightRun::UNMEASURED,
+            ..plain_end(Point::new(0.0, 0.0), Vec2::new(bend.cos(), bend.sin()))
         };
         let stem = BridgeEnd {
-            at: Point::new(9.0, -2.5),
-            outward: Some(Vec2::new(0.0, -1.0)),
-            bend: 0.0,
-            curving: 0.0,
-            circle: 0.0,
             behind: Some(Point::new(9.0, 0.5)),
-            straight: StraightRun::UNMEASURED,
+            ..plain_end(Point::new(9.0, -2.5), Vec2::new(0.0, -1.0))
         };
         let corner = bridge_shape(|| false, foot, stem, 0.0, 1.5)
             .and_then(|shape| shape.corner)
@@ -5685,23 +5657,10 @@ mod tests {
         // limit; along the stroke it turns 18° into the gap.
         let curled = Vec2::new(1.0, -1.0).normalize();
         let a = BridgeEnd {
-            at: Point::new(0.0, 0.0),
-            outward: Some(curled),
             bend: -std::f64::consts::FRAC_PI_4,
-            behind: None,
-            curving: 0.0,
-            circle: 0.0,
-            straight: StraightRun::UNMEASURED,
+            ..plain_end(Point::new(0.0, 0.0), curled)
         };
-        let b = BridgeEnd {
-            at: Point::new(6.0, 2.0),
-            outward: Some(Vec2::new(-1.0, 0.0)),
-            bend: 0.0,
-            behind: None,
-            curving: 0.0,
-            circle: 0.0,
-            straight: StraightRun::UNMEASURED,
-        };
+        let b = plain_end(Point::new(6.0, 2.0), Vec2::new(-1.0, 0.0));
         let shape = bridge_shape(|| false, a, b, 0.0, 1.5).expect("a bridge");
         assert!(shape.corner.is_none());
     }
@@ -5713,13 +5672,8 @@ mod tests {
         // pixels turn both ends nearly upright, and those lines meet far above the crest.
         let (up_right, up_left) = (Vec2::new(0.5, -0.866), Vec2::new(-0.5, -0.866));
         let end = |at: Point, stroke_way: Vec2, bend: f64| BridgeEnd {
-            at,
-            outward: Some(stroke_way.rotate_scale(Vec2::from_angle(bend))),
             bend,
-            behind: None,
-            curving: 0.0,
-            circle: 0.0,
-            straight: StraightRun::UNMEASURED,
+            ..plain_end(at, stroke_way.rotate_scale(Vec2::from_angle(bend)))
         };
         let a = end(Point::new(0.0, 0.0), up_right, -0.45);
         let b = end(Point::new(6.0, 0.0), up_left, 0.45);
