@@ -117,8 +117,7 @@ pub fn thin(mask: &Bitmap) -> Bitmap {
     if width == 0 || height == 0 {
         return mask.clone();
     }
-    let mut work = Work::framed(mask);
-    let mut queues = work.border_queues();
+    let (mut work, mut queues) = Work::framed(mask);
     let mut deletions = Vec::new();
     let mut spare = Vec::new();
     while queues.iter().any(|queue| !queue.is_empty()) {
@@ -152,54 +151,62 @@ struct Work {
 }
 
 impl Work {
-    fn framed(mask: &Bitmap) -> Self {
+    /// The framed copy of `mask`, and every border pixel in the queue of each side it faces,
+    /// flagged as queued.
+    fn framed(mask: &Bitmap) -> (Self, [Vec<usize>; 4]) {
         let (width, height) = (mask.width(), mask.height());
         let stride = width + 2;
-        let mut bytes = vec![0u8; stride * (height + 2)];
-        for (y, row) in mask.as_bytes().chunks_exact(width).enumerate() {
-            let start = (y + 1) * stride + 1;
-            for (cell, &pixel) in bytes[start..start + width].iter_mut().zip(row) {
-                *cell = u8::from(pixel != 0);
-            }
-        }
         let offsets = NEIGHBOUR_OFFSETS.map(|(dx, dy)| dx + dy * stride as isize);
-        Self {
-            bytes,
+        let mut work = Self {
+            bytes: Vec::with_capacity(stride * (height + 2)),
             width,
             height,
             stride,
             offsets,
             side_offsets: SIDES.map(|k| offsets[k]),
-        }
-    }
-
-    /// Every border pixel in the queue of each side it faces, flagged as queued.
-    fn border_queues(&mut self) -> [Vec<usize>; 4] {
-        let (width, stride, side_offsets) = (self.width, self.stride, self.side_offsets);
-        let work = &mut self.bytes;
+        };
+        // One pass over the page, each byte written once (zeroing the page first and then
+        // copying the mask in wrote it twice, and the border was looked for in a pass of its
+        // own): the top frame row and the first row's left frame byte, then each row with its
+        // right frame byte and the next row's left one, then the bottom frame row. A row's
+        // border pixels are queued once the row below it is in place.
         let mut queues: [Vec<usize>; 4] = Default::default();
-        for y in 1..=self.height {
-            let row = y * stride;
-            crate::raster::clean::for_each_run(
-                &work[row + 1..row + 1 + width],
-                true,
-                |start, end| {
-                    for index in row + 1 + start..row + 1 + end {
-                        for (side, queue) in queues.iter_mut().enumerate() {
-                            if work[index.wrapping_add_signed(side_offsets[side])] & INK == 0 {
-                                queue.push(index);
-                            }
-                        }
-                    }
-                },
-            );
-        }
-        for (side, queue) in queues.iter().enumerate() {
-            for &index in queue {
-                work[index] |= queued(side);
+        work.bytes.resize(stride + 1, 0);
+        for (y, row) in mask.as_bytes().chunks_exact(width).enumerate() {
+            let start = work.bytes.len();
+            work.bytes.extend_from_slice(row);
+            for cell in &mut work.bytes[start..] {
+                *cell = u8::from(*cell != 0);
+            }
+            work.bytes.extend_from_slice(&[0, 0]);
+            if y > 0 {
+                work.queue_border(y, &mut queues);
             }
         }
-        queues
+        work.bytes.resize(stride * (height + 2), 0);
+        work.queue_border(height, &mut queues);
+        for (side, queue) in queues.iter().enumerate() {
+            for &index in queue {
+                work.bytes[index] |= queued(side);
+            }
+        }
+        (work, queues)
+    }
+
+    /// Queues the border pixels of framed row `y` (1..=height) for each side they face; the rows
+    /// above and below it must be in place.
+    fn queue_border(&self, y: usize, queues: &mut [Vec<usize>; 4]) {
+        let (width, side_offsets, work) = (self.width, self.side_offsets, &self.bytes);
+        let row = y * self.stride;
+        crate::raster::clean::for_each_run(&work[row + 1..row + 1 + width], true, |start, end| {
+            for index in row + 1 + start..row + 1 + end {
+                for (side, queue) in queues.iter_mut().enumerate() {
+                    if work[index.wrapping_add_signed(side_offsets[side])] & INK == 0 {
+                        queue.push(index);
+                    }
+                }
+            }
+        });
     }
 
     /// The candidates of sub-iteration `side` that are deleted: ink, facing that side, not an
@@ -252,14 +259,17 @@ impl Work {
     fn unframed(self) -> Bitmap {
         let (width, height, stride) = (self.width, self.height, self.stride);
         let mut bytes = self.bytes;
+        // One pass over the page: each row moved to its place and its flags cleared there while
+        // it is in the cache, instead of moving all rows and then masking the page. (A loop
+        // doing both at once compiles to byte-by-byte code; a copy and a mask are vector code.)
         for y in 0..height {
-            let start = (y + 1) * stride + 1;
-            bytes.copy_within(start..start + width, y * width);
+            let (from, to) = ((y + 1) * stride + 1, y * width);
+            bytes.copy_within(from..from + width, to);
+            for cell in &mut bytes[to..to + width] {
+                *cell &= INK;
+            }
         }
         bytes.truncate(width * height);
-        for cell in &mut bytes {
-            *cell &= INK;
-        }
         Bitmap::from_pixels(width, height, bytes)
     }
 }
