@@ -16,6 +16,7 @@ use crate::crawl::contacts::{
 };
 use crate::crawl::crossings::{go_on_through_corners, pair_arms_straightest_first};
 use crate::crawl::hooks::trim_and_unhook_ends;
+use crate::crawl::ink_ends::reach_bridged_ends_to_their_ink;
 use crate::crawl::legs::splice_leftover_legs;
 use crate::crawl::necks::thread_ropes_up_merged_necks;
 use crate::crawl::outline_gaps::{close_outline_gaps, close_outline_gaps_across_ink};
@@ -352,6 +353,7 @@ fn vector_stages(
         untwist_curves(&mut curves, stroke_width);
         trim_and_unhook_ends(&mut curves, stroke_width);
         thread_ropes_up_merged_necks(&mut curves, stroke_width);
+        reach_bridged_ends_to_their_ink(&mut curves, &sampled, &raster.mask, stroke_width);
     }
     Vector {
         stroke_count,

@@ -18,6 +18,7 @@ pub mod contacts;
 pub mod crossings;
 mod hairpins;
 pub mod hooks;
+pub mod ink_ends;
 pub mod legs;
 pub mod necks;
 pub mod neighbours;

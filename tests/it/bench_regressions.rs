@@ -455,3 +455,21 @@ fn a_thick_lobe_and_a_balloons_knot_in_one_drawing() {
 fn a_teardrop_balloons_end_short_of_its_point_closes_the_loop() {
     assert_traces_exactly(5, "objects", "scan", 2);
 }
+
+/// A thick animal whose leg-to-body corner fell in a pen lift: the body's line and the leg's side
+/// stop short of their ink, and the bridge between them cut the corner 5.7 px inside; drawn from
+/// where each end's ink ends less half a pen width, the corner is within the tolerance (stop 72,
+/// `reach_bridged_ends_to_their_ink`).
+#[test]
+fn a_corner_in_a_pen_lift_is_drawn_from_where_the_ends_ink_ends() {
+    assert_traces_exactly(11, "animals", "thick", 23);
+}
+
+/// A leg drawn as two strokes whose flat foot fell in a pen lift: both sides' skeletons stop 2.5
+/// and 3.5 px inside their ink, and the bridge across the foot ran 4 px above it; drawn from
+/// where each side's ink ends less the cap, the foot is within the tolerance (stop 72; gained
+/// with the cap at 0.35 pen widths, not at 0.5).
+#[test]
+fn a_legs_foot_in_a_pen_lift_is_drawn_down_to_its_ink() {
+    assert_traces_exactly(11, "animals", "clean", 9);
+}
