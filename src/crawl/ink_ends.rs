@@ -33,6 +33,10 @@ const MIN_REACH_IN_PEN_WIDTHS: f64 = 0.15;
 
 /// Ink that runs on further than this (pen widths) ahead of an end is not its cap: the end lies
 /// against other ink (a stroke it touches, a band's other side), not where the pen lifted.
+// DECISION: (stop 72) one and a half pen widths; against the cap at 0.35 (s72a): 1.05 lost three
+// development drawings (seed 3 `spikes-thick-005`, seed 13 `meanders-clean-007`, seed 14
+// `parallel-thin-007`), 1.95 gained one (seed 14 `stars-clean-011`), validation unchanged at
+// both.
 const MAX_INK_AHEAD_IN_PEN_WIDTHS: f64 = 1.5;
 
 /// An end's way is the chord from its stroke's point this far back (pen widths) to the end:
