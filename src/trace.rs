@@ -24,13 +24,12 @@ use crate::crawl::retraced::cut_back_retraced_sides;
 use crate::crawl::slivers::open_slivers;
 use crate::crawl::spikes::{
     close_curves_ending_at_a_protrusion_tip, fold_collapsed_necks, fold_collapsed_spikes,
-    join_curves_at_a_protrusion_tip, join_free_ends_to_spike_tips,
+    join_curves_at_a_protrusion_tip, join_free_ends_to_spike_tips, SegmentGrid,
 };
 use crate::crawl::strokes::{connect_measured, Connected, Method};
 use crate::crawl::tips::restore_tips;
 use crate::crawl::twists::untwist_curves;
 use crate::files::{open_regular_file, ReadError};
-use crate::geometry::grid::PointGrid;
 use crate::geometry::polyline::{bounding_box, distance_to_segment};
 use crate::geometry::Polyline;
 use crate::output::debug::Stages;
@@ -528,51 +527,36 @@ fn raster_area(raster: &Raster) -> f64 {
     (raster.mask.width() * raster.mask.height()) as f64
 }
 
-/// The segments of the open pieces among some curves, listed in every grid cell within `reach`
-/// of them: whether a junction lies within `reach` of an open piece is looked up in its one cell.
+/// The open pieces among some curves, their segments in a grid: whether a junction lies within
+/// `reach` of an open piece is looked up around it.
 // DECISION: (stop 72) a grid, not every curve tried for every junction: a 1500×1500 page of
 // noise has tens of thousands of each, and the test alone took most of a 46 s trace. The same
 // segments are measured the same way, so the junctions found are the same.
 struct OpenPieces<'a> {
     curves: &'a [Polyline],
     reach: f64,
-    segments: PointGrid<(usize, usize)>,
+    segments: SegmentGrid,
 }
 
 impl<'a> OpenPieces<'a> {
     fn of(curves: &'a [Polyline], reach: f64) -> Self {
-        let mut segments = PointGrid::new(reach.max(1.0));
-        for (c, curve) in curves.iter().enumerate() {
-            if curve.closed || curve.points.len() < 2 {
-                continue;
-            }
-            for (k, pair) in curve.points.windows(2).enumerate() {
-                let around = kurbo::Rect::from_points(pair[0], pair[1]).inflate(reach, reach);
-                let (x0, y0) = segments.cell_of(kurbo::Point::new(around.x0, around.y0));
-                let (x1, y1) = segments.cell_of(kurbo::Point::new(around.x1, around.y1));
-                for cx in x0..=x1 {
-                    for cy in y0..=y1 {
-                        segments.insert_in_cell((cx, cy), (c, k));
-                    }
-                }
-            }
-        }
         Self {
             curves,
             reach,
-            segments,
+            segments: SegmentGrid::new(curves, reach),
         }
     }
 
     /// Whether `position` lies within the reach of one of the open pieces.
     fn near(&self, position: kurbo::Point) -> bool {
-        self.segments
-            .in_cell(self.segments.cell_of(position))
-            .any(|&(c, k)| {
-                let points = &self.curves[c].points;
-                distance_to_segment(position, kurbo::Line::new(points[k], points[k + 1]))
-                    <= self.reach
-            })
+        self.segments.around(position).any(|&(c, k)| {
+            let curve = &self.curves[c];
+            !curve.closed
+                && distance_to_segment(
+                    position,
+                    kurbo::Line::new(curve.points[k], curve.points[k + 1]),
+                ) <= self.reach
+        })
     }
 }
 

@@ -10,6 +10,7 @@
 
 use kurbo::{Point, Vec2};
 
+use super::strokes::{point_key, PointKey};
 use crate::geometry::{FastHashMap, Polyline};
 use crate::raster::bitmap::Bitmap;
 use crate::strokes::{Stroke, StrokeEnd};
@@ -75,7 +76,7 @@ fn ends_at_ink(
     strokes: &[Stroke],
     mask: &Bitmap,
     stroke_width: f64,
-) -> FastHashMap<(u64, u64), (Vec2, Point)> {
+) -> FastHashMap<PointKey, (Vec2, Point)> {
     let mut ends = FastHashMap::default();
     for stroke in strokes {
         let points = &stroke.line.points;
@@ -112,7 +113,7 @@ fn ends_at_ink(
             };
             let on = ink - CAP_IN_PEN_WIDTHS * stroke_width;
             if on >= MIN_REACH_IN_PEN_WIDTHS * stroke_width {
-                ends.insert((p.x.to_bits(), p.y.to_bits()), (way, p + way * on));
+                ends.insert(point_key(p), (way, p + way * on));
             }
         }
     }
@@ -144,7 +145,7 @@ pub fn reach_bridged_ends_to_their_ink(
         let mut drawn: Vec<Point> = Vec::with_capacity(n + 4);
         for i in 0..n {
             let v = curve.points[i];
-            let Some(&(way, at_ink)) = ends.get(&(v.x.to_bits(), v.y.to_bits())) else {
+            let Some(&(way, at_ink)) = ends.get(&point_key(v)) else {
                 drawn.push(v);
                 continue;
             };

@@ -431,32 +431,30 @@ fn protrusion_join(
                 if !reach.contains(end) || end.distance(tip) <= on_itself {
                     continue;
                 }
-                {
-                    let size = own_box.union(bounding_box(other));
-                    let max_protrusion =
-                        PROTRUSION_MAX_SHARE_OF_OUTLINE * size.width().hypot(size.height());
-                    // Where the end stops on the curve: its nearest point farther than the reach
-                    // from the tip along it.
-                    let away = (0..n - 1).filter(|&k| total - along[k] > on_itself);
-                    let Some(base) =
-                        base_where_stopping(&a, &along, end, away, on_itself, max_protrusion)
-                    else {
-                        continue;
-                    };
-                    if !double(&a[base..]) {
-                        continue;
-                    }
-                    // The other curve up to its end, out from the base to the tip, and back
-                    // along the whole curve.
-                    let mut joined = other.clone();
-                    if !end_last {
-                        joined.reverse();
-                    }
-                    joined.extend(a[base..].iter().copied());
-                    joined.extend(a[..n - 1].iter().rev().copied());
-                    joined.dedup();
-                    return Some((i.min(j), i.max(j), joined));
+                let size = own_box.union(bounding_box(other));
+                let max_protrusion =
+                    PROTRUSION_MAX_SHARE_OF_OUTLINE * size.width().hypot(size.height());
+                // Where the end stops on the curve: its nearest point farther than the reach
+                // from the tip along it.
+                let away = (0..n - 1).filter(|&k| total - along[k] > on_itself);
+                let Some(base) =
+                    base_where_stopping(&a, &along, end, away, on_itself, max_protrusion)
+                else {
+                    continue;
+                };
+                if !double(&a[base..]) {
+                    continue;
                 }
+                // The other curve up to its end, out from the base to the tip, and back
+                // along the whole curve.
+                let mut joined = other.clone();
+                if !end_last {
+                    joined.reverse();
+                }
+                joined.extend(a[base..].iter().copied());
+                joined.extend(a[..n - 1].iter().rev().copied());
+                joined.dedup();
+                return Some((i.min(j), i.max(j), joined));
             }
         }
     }
@@ -806,13 +804,13 @@ fn spike_root(points: &[Point], mask: &Bitmap, stroke_width: f64, typical: f64) 
 
 /// The segments of all curves, bucketed by points along them one `reach` apart in cells twice
 /// as wide, so that every segment passing within `reach` of a point is found around it. Also
-/// [`super::retraced`]'s.
-pub(super) struct SegmentGrid {
+/// [`super::retraced`]'s, and the contacts stage's (`crate::trace`).
+pub(crate) struct SegmentGrid {
     grid: PointGrid<(usize, usize)>,
 }
 
 impl SegmentGrid {
-    pub(super) fn new(curves: &[Polyline], reach: f64) -> Self {
+    pub(crate) fn new(curves: &[Polyline], reach: f64) -> Self {
         let step = reach.max(1.0);
         // Each segment goes in at least one cell, a few in two; cells hold a few each.
         let segments: usize = curves
@@ -850,7 +848,7 @@ impl SegmentGrid {
 
     /// The segments (curve, segment) bucketed around `p`: every one within the grid's `reach`
     /// of it, and some farther.
-    pub(super) fn around(&self, p: Point) -> impl Iterator<Item = &(usize, usize)> + '_ {
+    pub(crate) fn around(&self, p: Point) -> impl Iterator<Item = &(usize, usize)> + '_ {
         self.grid.around(p)
     }
 
